@@ -1,0 +1,58 @@
+#include "drvslam/io/trajectory_io.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "drvslam/core/error.h"
+#include "drvslam/io/text_lines.h"
+
+namespace drvslam {
+
+Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty) {
+  Trajectory trajectory;
+  ForEachDataLine(path, [&](int line_number, const std::vector<std::string>& fields) {
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (fields.size() != 8) {
+      throw Error(where + ": expected 8 values (timestamp tx ty tz qx qy qz qw), found " +
+                  std::to_string(fields.size()));
+    }
+    double v[8];
+    for (int k = 0; k < 8; ++k) v[k] = ParseNumber(fields[k], where);
+    for (int k = 0; k < 8; ++k) {
+      if (!std::isfinite(v[k])) throw Error(where + ": value '" + fields[k] + "' is not finite");
+    }
+    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+    if (q.norm() < 1e-9) throw Error(where + ": quaternion has zero length");
+    if (!trajectory.empty() && v[0] <= trajectory.back().timestamp) {
+      throw Error(where + ": timestamp " + fields[0] + " does not increase");
+    }
+    trajectory.push_back({v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3]))});
+  });
+  if (trajectory.empty() && !allow_empty) throw Error(path + ": trajectory has no poses");
+  return trajectory;
+}
+
+std::string FormatTumPose(const StampedPose& pose) {
+  Eigen::Quaterniond q = pose.T_wc.Quaternion();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  const Eigen::Vector3d& t = pose.T_wc.Translation();
+  char line[256];
+  std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f", pose.timestamp,
+                t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+  return line;
+}
+
+void WriteTumTrajectory(const std::string& path, const Trajectory& trajectory,
+                        const std::string& header_comment) {
+  std::ofstream out(path);
+  if (!out) throw Error(path + ": cannot open for writing");
+  if (!header_comment.empty()) out << "# " << header_comment << "\n";
+  out << "# timestamp tx ty tz qx qy qz qw\n";
+  for (const StampedPose& pose : trajectory) out << FormatTumPose(pose) << "\n";
+  out.flush();
+  if (!out) throw Error(path + ": write failed");
+}
+
+}  // namespace drvslam

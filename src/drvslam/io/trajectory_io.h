@@ -1,0 +1,33 @@
+// Trajectories in the TUM RGB-D format: one pose per line, "timestamp tx ty tz qx qy qz qw",
+// camera-to-world (T_wc), '#' comments. Reading is strict: a malformed line, a NaN, a zero
+// quaternion or a timestamp that does not increase is an Error naming the file and line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "drvslam/core/se3.h"
+
+namespace drvslam {
+
+struct StampedPose {
+  double timestamp = 0.0;  // seconds
+  SE3 T_wc;
+};
+
+using Trajectory = std::vector<StampedPose>;
+
+// Reads a TUM trajectory. Fields may be separated by spaces, tabs or commas (as the TUM tools
+// accept). An empty file (no poses) is an Error unless allow_empty is set.
+Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty = false);
+
+// Writes timestamps with 6 decimals and pose values with 9, so reading back reproduces the
+// written numbers exactly. The quaternion is written with qw >= 0. Throws Error when the file
+// cannot be written.
+void WriteTumTrajectory(const std::string& path, const Trajectory& trajectory,
+                        const std::string& header_comment = "");
+
+// Formats one pose line as WriteTumTrajectory does (without the newline).
+std::string FormatTumPose(const StampedPose& pose);
+
+}  // namespace drvslam
