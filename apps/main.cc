@@ -1,8 +1,8 @@
 // drvslam command-line entry point: builds the CLI11 app from the registered commands, runs the
 // chosen one, and turns every error into "error: ..." on stderr with exit status 2.
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << e.what() << "\n" << "run 'drvslam --help' for usage\n";
+    std::cerr << "error: " << e.what() << "\n"
+              << "run 'drvslam --help' for usage\n";
     return 2;
   } catch (const drvslam::Error& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -1,8 +1,7 @@
 #include "drvslam/core/camera.h"
 
-#include <opencv2/calib3d.hpp>
-
 #include <cmath>
+#include <opencv2/calib3d.hpp>
 #include <sstream>
 
 #include "drvslam/core/error.h"
@@ -38,13 +37,11 @@ void CameraOptions::Check() const {
   Require(std::isfinite(bf) && bf > 0, "Camera.bf", bf, "must be a positive number");
 }
 
-PinholeCamera::PinholeCamera(const CameraOptions& options) : options_(options) {
-  options_.Check();
-}
+PinholeCamera::PinholeCamera(const CameraOptions& options) : options_(options) { options_.Check(); }
 
 cv::Mat PinholeCamera::K() const {
-  return (cv::Mat_<double>(3, 3) << options_.fx, 0, options_.cx, 0, options_.fy, options_.cy, 0,
-          0, 1);
+  return (cv::Mat_<double>(3, 3) << options_.fx, 0, options_.cx, 0, options_.fy, options_.cy, 0, 0,
+          1);
 }
 
 cv::Mat PinholeCamera::DistortionCoeffs() const {

@@ -5,7 +5,6 @@
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
-
 #include <string>
 #include <vector>
 
@@ -59,7 +58,7 @@ class PinholeCamera {
            pixel.y() < options_.height;
   }
 
-  cv::Mat K() const;                // 3x3 CV_64F
+  cv::Mat K() const;                 // 3x3 CV_64F
   cv::Mat DistortionCoeffs() const;  // 1x5 CV_64F: k1 k2 p1 p2 k3
   // Removes lens distortion from pixel positions (a no-op copy without distortion).
   std::vector<cv::Point2f> Undistort(const std::vector<cv::Point2f>& pixels) const;

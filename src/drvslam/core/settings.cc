@@ -3,9 +3,9 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 #include <type_traits>
-#include <sstream>
 
 #include "drvslam/core/error.h"
 

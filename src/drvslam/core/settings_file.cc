@@ -1,10 +1,10 @@
 #include "drvslam/core/settings_file.h"
 
-#include <opencv2/core.hpp>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <filesystem>
+#include <opencv2/core.hpp>
 #include <sstream>
 
 #include "drvslam/core/error.h"

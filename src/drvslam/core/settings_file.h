@@ -5,7 +5,6 @@
 #pragma once
 
 #include <opencv2/core/persistence.hpp>
-
 #include <set>
 #include <string>
 #include <vector>
