@@ -9,6 +9,15 @@
 #include "drvslam/io/text_lines.h"
 
 namespace drvslam {
+namespace {
+
+std::string FormatStamp(double stamp) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.6f", stamp);
+  return text;
+}
+
+}  // namespace
 
 Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty) {
   Trajectory trajectory;
@@ -25,10 +34,19 @@ Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty) {
     }
     const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (q.norm() < 1e-9) throw Error(where + ": quaternion has zero length");
-    if (!trajectory.empty() && v[0] <= trajectory.back().timestamp) {
-      throw Error(where + ": timestamp " + fields[0] + " does not increase");
+    const StampedPose pose{v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3]))};
+    if (!trajectory.empty() && v[0] < trajectory.back().timestamp) {
+      throw Error(where + ": timestamp " + fields[0] + " does not increase (previous line has " +
+                  FormatStamp(trajectory.back().timestamp) + ")");
     }
-    trajectory.push_back({v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3]))});
+    // Real ground truth repeats a stamp now and then (fr2/desk line 10863: stamps rounded to
+    // 0.1 ms at a 300 Hz capture rate). The TUM tools keep the later line, and so does this, so
+    // the result stays strictly increasing.
+    if (!trajectory.empty() && v[0] == trajectory.back().timestamp) {
+      trajectory.back() = pose;
+    } else {
+      trajectory.push_back(pose);
+    }
   });
   if (trajectory.empty() && !allow_empty) throw Error(path + ": trajectory has no poses");
   return trajectory;

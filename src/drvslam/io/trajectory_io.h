@@ -1,6 +1,6 @@
 // Trajectories in the TUM RGB-D format: one pose per line, "timestamp tx ty tz qx qy qz qw",
 // camera-to-world (T_wc), '#' comments. Reading is strict: a malformed line, a NaN, a zero
-// quaternion or a timestamp that does not increase is an Error naming the file and line.
+// quaternion or a timestamp that goes backwards is an Error naming the file and line.
 #pragma once
 
 #include <string>
@@ -18,11 +18,14 @@ struct StampedPose {
 using Trajectory = std::vector<StampedPose>;
 
 // Reads a TUM trajectory. Fields may be separated by spaces, tabs or commas (as the TUM tools
-// accept). An empty file (no poses) is an Error unless allow_empty is set.
+// accept). A line that repeats the previous line's timestamp replaces that pose, as the TUM tools
+// do (real ground truth has such lines), so the result's stamps strictly increase. An empty file
+// (no poses) is an Error unless allow_empty is set.
 Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty = false);
 
 // Writes timestamps with 6 decimals and pose values with 9, so reading back reproduces the
-// written numbers exactly. The quaternion is written with qw >= 0. Throws Error when the file
+// written numbers (the timestamp and translation exactly; the quaternion to 1e-9, since reading
+// renormalizes it). The quaternion is written with qw >= 0. Throws Error when the file
 // cannot be written.
 void WriteTumTrajectory(const std::string& path, const Trajectory& trajectory,
                         const std::string& header_comment = "");
