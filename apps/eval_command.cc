@@ -1,0 +1,78 @@
+// `drvslam eval GT EST`: ATE and RPE of an estimated trajectory against ground truth, computed as
+// the TUM RGB-D benchmark scripts do; prints a table and optionally writes JSON and a plot.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "command_registry.h"
+#include "drvslam/eval/ate.h"
+#include "drvslam/eval/eval_report.h"
+#include "drvslam/eval/rpe.h"
+#include "drvslam/eval/trajectory_plot.h"
+#include "drvslam/io/trajectory_io.h"
+
+namespace {
+
+struct EvalArguments {
+  std::string ground_truth;
+  std::string estimate;
+  drvslam::AteOptions ate;
+  double rpe_delta = 1.0;
+  std::string json_path;
+  std::string plot_path;
+};
+
+void RunEval(const EvalArguments& args) {
+  // Check every option before reading files, so a typo is reported at once.
+  args.ate.Check();
+  drvslam::RpeOptions rpe_options;
+  rpe_options.delta = args.rpe_delta;
+  rpe_options.offset = args.ate.offset;
+  rpe_options.Check();
+
+  const drvslam::Trajectory gt = drvslam::ReadTumTrajectory(args.ground_truth);
+  const drvslam::Trajectory est = drvslam::ReadTumTrajectory(args.estimate);
+  const drvslam::AteResult ate = drvslam::ComputeAte(gt, est, args.ate);
+  // With --scale the estimate's relative motions are compared at the scale ATE found.
+  rpe_options.scale = ate.alignment.scale;
+  const drvslam::RpeResult rpe = drvslam::ComputeRpe(gt, est, rpe_options);
+
+  std::cout << "ground truth: " << args.ground_truth << " (" << gt.size() << " poses)\n"
+            << "estimate:     " << args.estimate << " (" << est.size() << " poses)\n"
+            << drvslam::FormatEvalTable(ate, rpe);
+  if (!args.json_path.empty()) {
+    drvslam::WriteEvalReportJson(args.json_path, ate, rpe);
+    std::cout << "wrote " << args.json_path << "\n";
+  }
+  if (!args.plot_path.empty()) {
+    drvslam::WriteTrajectoryPlot(args.plot_path, gt, est, ate);
+    std::cout << "wrote " << args.plot_path << "\n";
+  }
+}
+
+const bool kRegistered = drvslam::cli::RegisterCommand("eval", [](CLI::App& root) {
+  auto args = std::make_shared<EvalArguments>();
+  CLI::App* cmd = root.add_subcommand(
+      "eval",
+      "ATE and RPE of an estimated trajectory against ground truth, the TUM RGB-D benchmark's "
+      "way (evaluate_ate.py, evaluate_rpe.py --fixed_delta)");
+  cmd->add_option("GT", args->ground_truth, "ground-truth trajectory (TUM format)")->required();
+  cmd->add_option("EST", args->estimate, "estimated trajectory (TUM format)")->required();
+  cmd->add_option("--max-diff", args->ate.max_difference,
+                  "largest time difference (s) for two stamps to associate")
+      ->capture_default_str();
+  cmd->add_option("--offset", args->ate.offset, "time offset (s) added to the estimate's stamps")
+      ->capture_default_str();
+  cmd->add_flag("--scale", args->ate.with_scale,
+                "similarity alignment: also estimate a scale (for monocular systems; RGB-D "
+                "evaluation is rigid)");
+  cmd->add_option("--rpe-delta", args->rpe_delta, "time (s) between the poses RPE compares")
+      ->capture_default_str();
+  cmd->add_option("--json", args->json_path, "write the results as JSON to this file");
+  cmd->add_option("--plot", args->plot_path,
+                  "write a PNG: top view of ground truth and aligned estimate, ATE over time");
+  cmd->callback([args] { RunEval(*args); });
+});
+
+}  // namespace

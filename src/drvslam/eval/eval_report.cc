@@ -1,0 +1,71 @@
+#include "drvslam/eval/eval_report.h"
+
+#include <cstdarg>
+#include <cstdio>
+#include <fstream>
+
+#include "drvslam/core/error.h"
+
+namespace drvslam {
+namespace {
+
+std::string Printf(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
+std::string Printf(const char* format, ...) {
+  char buffer[256];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  return buffer;
+}
+
+std::string MetresRow(const char* name, double metres) {
+  return Printf("  %-22s %12.6f m %10.3f cm\n", name, metres, 100.0 * metres);
+}
+
+}  // namespace
+
+nlohmann::json EvalReportJson(const AteResult& ate, const RpeResult& rpe) {
+  nlohmann::json json;
+  json["ate"] = {
+      {"rmse", ate.errors.rmse}, {"mean", ate.errors.mean},  {"median", ate.errors.median},
+      {"std", ate.errors.std},   {"min", ate.errors.min},    {"max", ate.errors.max},
+      {"matched", ate.matched},  {"coverage", ate.coverage}, {"scale", ate.alignment.scale}};
+  json["rpe"] = {{"trans_rmse", rpe.trans_rmse}, {"rot_rmse_deg", rpe.rot_rmse_deg},
+                 {"trans_mean", rpe.trans_mean}, {"rot_mean_deg", rpe.rot_mean_deg},
+                 {"pairs", rpe.pairs},           {"delta", rpe.delta}};
+  return json;
+}
+
+void WriteEvalReportJson(const std::string& path, const AteResult& ate, const RpeResult& rpe) {
+  std::ofstream out(path);
+  if (!out) throw Error(path + ": cannot open the --json file for writing");
+  out << EvalReportJson(ate, rpe).dump(2) << "\n";
+  out.flush();
+  if (!out) throw Error(path + ": writing the --json file failed");
+}
+
+std::string FormatEvalTable(const AteResult& ate, const RpeResult& rpe) {
+  std::string table;
+  table += Printf("Absolute trajectory error (%s alignment, scale %.6f)\n",
+                  ate.with_scale ? "similarity" : "rigid", ate.alignment.scale);
+  table += MetresRow("rmse", ate.errors.rmse);
+  table += MetresRow("mean", ate.errors.mean);
+  table += MetresRow("median", ate.errors.median);
+  table += MetresRow("std", ate.errors.std);
+  table += MetresRow("min", ate.errors.min);
+  table += MetresRow("max", ate.errors.max);
+  table += Printf("  %-22s %12zu\n", "matched poses", ate.matched);
+  table += Printf("  %-22s %12.2f %%  (of the ground truth's time span)\n", "coverage",
+                  100.0 * ate.coverage);
+  table += Printf("Relative pose error (delta %.3f s)\n", rpe.delta);
+  table += MetresRow("translation rmse", rpe.trans_rmse);
+  table += MetresRow("translation mean", rpe.trans_mean);
+  table += Printf("  %-22s %12.6f deg\n", "rotation rmse", rpe.rot_rmse_deg);
+  table += Printf("  %-22s %12.6f deg\n", "rotation mean", rpe.rot_mean_deg);
+  table += Printf("  %-22s %12zu\n", "pose pairs", rpe.pairs);
+  return table;
+}
+
+}  // namespace drvslam

@@ -1,0 +1,24 @@
+// How `drvslam eval` presents its results: the JSON document whose keys are part of the CLI
+// contract (DESIGN.md) and the human-readable table printed on stdout.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "drvslam/eval/ate.h"
+#include "drvslam/eval/rpe.h"
+
+namespace drvslam {
+
+// {"ate": {rmse, mean, median, std, min, max, matched, coverage, scale},
+//  "rpe": {trans_rmse, rot_rmse_deg, trans_mean, rot_mean_deg, pairs, delta}}; metres, degrees,
+// seconds, coverage as a fraction in [0, 1].
+nlohmann::json EvalReportJson(const AteResult& ate, const RpeResult& rpe);
+
+// Writes EvalReportJson, indented. Throws Error naming the path when it cannot be written.
+void WriteEvalReportJson(const std::string& path, const AteResult& ate, const RpeResult& rpe);
+
+// A table of ATE statistics (metres and centimetres), matched poses, coverage and RPE.
+std::string FormatEvalTable(const AteResult& ate, const RpeResult& rpe);
+
+}  // namespace drvslam

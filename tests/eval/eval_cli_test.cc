@@ -1,0 +1,114 @@
+// Runs the built `drvslam eval` on files in a temporary folder: the contract is the exit status,
+// the "error: ..." line and the JSON keys.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "drvslam/io/trajectory_io.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+CliRun RunCli(const std::string& arguments) {
+  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  std::size_t read = 0;
+  while ((read = fread(buffer, 1, sizeof(buffer), pipe)) > 0) run.output.append(buffer, read);
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+class EvalCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(DRVSLAM_CLI)) GTEST_SKIP() << "CLI not built at " << DRVSLAM_CLI;
+    dir_ = fs::temp_directory_path() / ("drvslam_eval_cli_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+    Trajectory gt, est;
+    for (int k = 0; k < 150; ++k) {
+      const double t = 1000.0 + k / 30.0;
+      const Eigen::Vector3d p(std::cos(0.5 * t), std::sin(0.4 * t), 0.1 * std::sin(t));
+      const Eigen::Quaterniond q(Eigen::AngleAxisd(0.2 * t, Eigen::Vector3d::UnitZ()));
+      gt.push_back({t, SE3(q, p)});
+      // 1 cm across the path, alternating, on a moved copy.
+      const Eigen::Vector3d offset(0.0, 0.0, k % 2 == 0 ? 0.01 : -0.01);
+      est.push_back({t + 0.004, SE3(q, p + offset)});
+    }
+    gt_ = (dir_ / "groundtruth.txt").string();
+    est_ = (dir_ / "estimate.txt").string();
+    WriteTumTrajectory(gt_, gt);
+    WriteTumTrajectory(est_, est);
+  }
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+  fs::path dir_;
+  std::string gt_, est_;
+};
+
+TEST_F(EvalCliTest, WritesJsonWithTheContractKeysAndAPlot) {
+  const std::string json_path = (dir_ / "eval.json").string();
+  const std::string plot_path = (dir_ / "eval.png").string();
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --json " + json_path + " --plot " +
+                            plot_path + " --rpe-delta 0.5");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("rmse"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("matched poses"), std::string::npos) << run.output;
+
+  std::ifstream in(json_path);
+  ASSERT_TRUE(in.good());
+  const nlohmann::json json = nlohmann::json::parse(in);
+  for (const char* key :
+       {"rmse", "mean", "median", "std", "min", "max", "matched", "coverage", "scale"}) {
+    EXPECT_TRUE(json["ate"].contains(key)) << key;
+  }
+  for (const char* key :
+       {"trans_rmse", "rot_rmse_deg", "trans_mean", "rot_mean_deg", "pairs", "delta"}) {
+    EXPECT_TRUE(json["rpe"].contains(key)) << key;
+  }
+  EXPECT_EQ(json["ate"]["matched"].get<int>(), 150);
+  EXPECT_NEAR(json["ate"]["rmse"].get<double>(), 0.01, 0.002);
+  EXPECT_DOUBLE_EQ(json["rpe"]["delta"].get<double>(), 0.5);
+  EXPECT_GT(fs::file_size(plot_path), 10000u);
+}
+
+TEST_F(EvalCliTest, MissingFileIsAnError) {
+  const CliRun run = RunCli("eval " + gt_ + " " + (dir_ / "no-such-file.txt").string());
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("error:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("no-such-file.txt"), std::string::npos) << run.output;
+}
+
+TEST_F(EvalCliTest, NegativeMaxDiffIsAnError) {
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --max-diff -1");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("error:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--max-diff"), std::string::npos) << run.output;
+}
+
+TEST_F(EvalCliTest, UnwritableJsonPathIsAnError) {
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --json /nonexistent-dir/eval.json");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("error: /nonexistent-dir/eval.json"), std::string::npos) << run.output;
+}
+
+}  // namespace
+}  // namespace drvslam
