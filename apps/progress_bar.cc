@@ -1,0 +1,29 @@
+#include "progress_bar.h"
+
+#include <cstdio>
+
+#include "drvslam/core/logging.h"
+
+namespace drvslam::cli {
+
+ProgressBar::ProgressBar(std::string label)
+    : label_(std::move(label)), enabled_(drvslam::StdoutIsTerminal()) {}
+
+ProgressBar::~ProgressBar() {
+  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\n");
+}
+
+void ProgressBar::Update(std::size_t done, std::size_t total) {
+  if (!enabled_ || total == 0) return;
+  const int percent = static_cast<int>(100 * done / total);
+  if (percent == last_percent_) return;
+  last_percent_ = percent;
+  constexpr int kWidth = 40;
+  const int filled = kWidth * percent / 100;
+  std::fprintf(stderr, "\r%s [%.*s%*s] %3d%% (%zu/%zu)", label_.c_str(), filled,
+               "########################################", kWidth - filled, "", percent, done,
+               total);
+  std::fflush(stderr);
+}
+
+}  // namespace drvslam::cli

@@ -1,0 +1,49 @@
+// Per-stage timing: each pipeline stage records its milliseconds per frame; the summary gives
+// the median and 95th percentile that stats.json and the benchmarks report.
+// Thread-safety: guarded by mutex_, so stages on different threads may record.
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace drvslam {
+
+struct TimingSummary {
+  std::size_t count = 0;
+  double median_ms = 0.0;
+  double p95_ms = 0.0;
+  double mean_ms = 0.0;
+  double max_ms = 0.0;
+};
+
+class StageTimings {
+ public:
+  void Record(const std::string& stage, double milliseconds);
+  // Stages in name order.
+  std::map<std::string, TimingSummary> Summaries() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, std::vector<double>> samples_;
+};
+
+// Summary of a sample (nearest-rank percentiles; zeros for an empty sample).
+TimingSummary Summarize(std::vector<double> samples_ms);
+
+// Milliseconds elapsed since construction.
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  double ElapsedMs() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+        .count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace drvslam

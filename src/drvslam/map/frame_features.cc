@@ -1,0 +1,103 @@
+#include "drvslam/map/frame_features.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "drvslam/core/error.h"
+
+namespace drvslam {
+
+SensorGeometry::SensorGeometry(const CameraOptions& camera_options,
+                               const ScalePyramid& scale_pyramid, double close_depth_m)
+    : camera(camera_options), pyramid(scale_pyramid), close_depth(close_depth_m) {
+  const double w = camera_options.width, h = camera_options.height;
+  if (!camera_options.HasDistortion()) {
+    min_x = 0;
+    max_x = w;
+    min_y = 0;
+    max_y = h;
+    return;
+  }
+  const std::vector<cv::Point2f> corners =
+      camera.Undistort({{0.f, 0.f},
+                        {static_cast<float>(w), 0.f},
+                        {0.f, static_cast<float>(h)},
+                        {static_cast<float>(w), static_cast<float>(h)}});
+  min_x = std::min(corners[0].x, corners[2].x);
+  max_x = std::max(corners[1].x, corners[3].x);
+  min_y = std::min(corners[0].y, corners[1].y);
+  max_y = std::max(corners[2].y, corners[3].y);
+}
+
+FrameFeatures::FrameFeatures(std::shared_ptr<const SensorGeometry> geometry,
+                             std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors,
+                             const cv::Mat& depth)
+    : geometry_(std::move(geometry)),
+      keypoints_(std::move(keypoints)),
+      descriptors_(std::move(descriptors)) {
+  const std::size_t n = keypoints_.size();
+  if (static_cast<std::size_t>(descriptors_.rows) != n) {
+    throw Error("frame features: descriptor rows do not match the keypoint count");
+  }
+  // Undistort keypoint positions (a copy without distortion).
+  keypoints_un_ = keypoints_;
+  const PinholeCamera& camera = geometry_->camera;
+  if (camera.Options().HasDistortion() && n > 0) {
+    std::vector<cv::Point2f> points(n);
+    for (std::size_t i = 0; i < n; ++i) points[i] = keypoints_[i].pt;
+    points = camera.Undistort(points);
+    for (std::size_t i = 0; i < n; ++i) keypoints_un_[i].pt = points[i];
+  }
+  // Depth is looked up at the raw (distorted) pixel, where the sensor measured it.
+  depth_.assign(n, 0.f);
+  right_u_.assign(n, -1.f);
+  const double bf = geometry_->Bf();
+  if (!depth.empty()) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const int u = static_cast<int>(std::lround(keypoints_[i].pt.x));
+      const int v = static_cast<int>(std::lround(keypoints_[i].pt.y));
+      if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
+      const float d = depth.at<float>(v, u);
+      if (d > 0 && std::isfinite(d)) {
+        depth_[i] = d;
+        right_u_[i] = static_cast<float>(keypoints_un_[i].pt.x - bf / d);
+      }
+    }
+  }
+  cell_width_inv_ = kGridCols / (geometry_->max_x - geometry_->min_x);
+  cell_height_inv_ = kGridRows / (geometry_->max_y - geometry_->min_y);
+  grid_.assign(kGridCols * kGridRows, {});
+  for (std::size_t i = 0; i < n; ++i) {
+    const int cx = static_cast<int>((keypoints_un_[i].pt.x - geometry_->min_x) * cell_width_inv_);
+    const int cy = static_cast<int>((keypoints_un_[i].pt.y - geometry_->min_y) * cell_height_inv_);
+    if (cx < 0 || cy < 0 || cx >= kGridCols || cy >= kGridRows) continue;
+    grid_[cy * kGridCols + cx].push_back(i);
+  }
+}
+
+std::vector<std::size_t> FrameFeatures::FeaturesInArea(double x, double y, double r, int min_level,
+                                                       int max_level) const {
+  std::vector<std::size_t> result;
+  const int min_cx = std::max(0, static_cast<int>((x - r - geometry_->min_x) * cell_width_inv_));
+  const int max_cx =
+      std::min(kGridCols - 1, static_cast<int>((x + r - geometry_->min_x) * cell_width_inv_));
+  const int min_cy = std::max(0, static_cast<int>((y - r - geometry_->min_y) * cell_height_inv_));
+  const int max_cy =
+      std::min(kGridRows - 1, static_cast<int>((y + r - geometry_->min_y) * cell_height_inv_));
+  if (min_cx > max_cx || min_cy > max_cy || x + r < geometry_->min_x || y + r < geometry_->min_y) {
+    return result;
+  }
+  for (int cy = min_cy; cy <= max_cy; ++cy) {
+    for (int cx = min_cx; cx <= max_cx; ++cx) {
+      for (const std::size_t i : grid_[cy * kGridCols + cx]) {
+        const cv::KeyPoint& kp = keypoints_un_[i];
+        if (min_level >= 0 && kp.octave < min_level) continue;
+        if (max_level >= 0 && kp.octave > max_level) continue;
+        if (std::abs(kp.pt.x - x) < r && std::abs(kp.pt.y - y) < r) result.push_back(i);
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace drvslam

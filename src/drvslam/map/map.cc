@@ -1,0 +1,67 @@
+#include "drvslam/map/map.h"
+
+namespace drvslam {
+
+long Map::NextKeyFrameId() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return next_keyframe_id_++;
+}
+
+long Map::NextMapPointId() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return next_map_point_id_++;
+}
+
+void Map::AddKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  keyframes_[keyframe->Id()] = keyframe;
+}
+
+void Map::AddMapPoint(const std::shared_ptr<MapPoint>& point) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  map_points_[point->Id()] = point;
+}
+
+void Map::EraseKeyFrame(long id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  keyframes_.erase(id);
+}
+
+void Map::EraseMapPoint(long id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  map_points_.erase(id);
+}
+
+std::vector<std::shared_ptr<KeyFrame>> Map::KeyFrames() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::shared_ptr<KeyFrame>> result;
+  result.reserve(keyframes_.size());
+  for (const auto& [id, keyframe] : keyframes_) result.push_back(keyframe);
+  return result;
+}
+
+std::vector<std::shared_ptr<MapPoint>> Map::MapPoints() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::shared_ptr<MapPoint>> result;
+  result.reserve(map_points_.size());
+  for (const auto& [id, point] : map_points_) result.push_back(point);
+  return result;
+}
+
+std::size_t Map::KeyFrameCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return keyframes_.size();
+}
+
+std::size_t Map::MapPointCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return map_points_.size();
+}
+
+void Map::Clear() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  keyframes_.clear();
+  map_points_.clear();
+}
+
+}  // namespace drvslam

@@ -1,0 +1,39 @@
+// RunSequence: drvslam's main job on a TUM-layout folder: settings resolution, the frame loop
+// through System, and the outputs (CameraTrajectory.txt, KeyFrameTrajectory.txt, stats.json).
+// Whatever was tracked is written even when a frame fails to load or the run is interrupted.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "drvslam/system.h"
+
+namespace drvslam {
+
+struct RunOptions {
+  std::string dataset;  // TUM-layout folder
+  std::string config;   // settings file; empty: DATASET/settings.yaml if present, else TUM fr3
+  std::string out_dir;  // created when missing
+  bool sequential = false;
+  std::size_t max_frames = 0;  // 0 = all
+};
+
+struct RunSummary {
+  SystemStats stats;
+  std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
+  bool interrupted = false;
+  std::string camera_trajectory_path;
+};
+
+// progress(done, total) is called after every frame; `stop` (may be null) ends the loop early
+// when it becomes true. Throws Error for bad input, after writing what was computed.
+RunSummary RunSequence(const RunOptions& options,
+                       const std::function<void(std::size_t, std::size_t)>& progress = nullptr,
+                       const std::atomic<bool>* stop = nullptr);
+
+// Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
+// fps, stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings).
+void WriteStatsJson(const std::string& path, const RunSummary& summary);
+
+}  // namespace drvslam

@@ -1,0 +1,24 @@
+// Creating keyframes and their depth map points from a tracked frame (RGB-D: points come
+// straight from depth, closest first). The covisibility update and point bookkeeping that
+// follow are what local mapping takes over per keyframe.
+#pragma once
+
+#include <memory>
+
+#include "drvslam/map/frame.h"
+#include "drvslam/map/map.h"
+
+namespace drvslam {
+
+// The first keyframe at the frame's pose (identity for a new map), a map point for every
+// keypoint with valid depth. Returns nullptr (and adds nothing) when fewer than min_points
+// keypoints have depth.
+std::shared_ptr<KeyFrame> CreateInitialKeyFrame(Frame& frame, Map& map, int min_points);
+
+// A keyframe at the frame's pose holding its inlier matches; new map points from close depth
+// for unmatched keypoints, closest first, at least `new_points` of them when there are that
+// many (beyond that only those closer than the close-depth limit). Links observations,
+// descriptors, normals and covisibility.
+std::shared_ptr<KeyFrame> CreateKeyFrame(Frame& frame, Map& map, int new_points);
+
+}  // namespace drvslam

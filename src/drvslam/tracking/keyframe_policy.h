@@ -1,0 +1,20 @@
+// When tracking inserts a new keyframe: ORB-SLAM2's RGB-D criteria as a pure function, so they
+// can be tested without a map.
+#pragma once
+
+namespace drvslam {
+
+struct KeyFrameEvidence {
+  int frames_since_keyframe = 0;
+  int max_frames = 30;  // a keyframe is due after this many frames
+  int keyframes_in_map = 0;
+  bool mapping_idle = true;          // local mapping can take a keyframe now
+  int tracked_inliers = 0;           // this frame's inlier matches
+  int reference_tracked_points = 0;  // well-observed points of the reference keyframe
+  int close_tracked = 0;             // close-depth features with a map point
+  int close_untracked = 0;           // close-depth features without one
+};
+
+bool NeedNewKeyFrame(const KeyFrameEvidence& e);
+
+}  // namespace drvslam

@@ -1,0 +1,246 @@
+#include "drvslam/tracking/tracker.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "drvslam/tracking/keyframe_factory.h"
+#include "drvslam/tracking/keyframe_policy.h"
+
+namespace drvslam {
+namespace {
+
+// Search radii (pixels at level 0) of ORB-SLAM2's RGB-D tracking.
+constexpr double kMotionModelRadius = 7.0;
+constexpr double kLocalMapRadius = 3.0;
+constexpr int kMinMotionMatches = 20;
+constexpr int kMinReferenceMatches = 15;
+constexpr int kMinPoseInliers = 10;
+// A point seen at more than 60 degrees from its mean viewing direction is not searched.
+constexpr double kMinViewCos = 0.5;
+
+}  // namespace
+
+const char* TrackingStateName(TrackingState state) {
+  switch (state) {
+    case TrackingState::kNotInitialized:
+      return "not initialized";
+    case TrackingState::kOk:
+      return "ok";
+    case TrackingState::kLost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+Tracker::Tracker(Map& map, const TrackerOptions& options, double fps)
+    : map_(map),
+      options_(options),
+      max_frames_between_keyframes_(options.max_frames_between_keyframes > 0
+                                        ? options.max_frames_between_keyframes
+                                        : std::max(1, static_cast<int>(std::lround(fps)))) {
+  options_.Check();
+}
+
+TrackingResult Tracker::Track(Frame frame) {
+  current_.emplace(std::move(frame));
+  TrackingResult result;
+
+  if (state_ == TrackingState::kNotInitialized) {
+    if (Initialize()) {
+      state_ = TrackingState::kOk;
+      result.new_keyframe = last_keyframe_;
+      result.inliers = static_cast<int>(map_.MapPointCount());
+      recorder_.AddTracked(current_->Timestamp(), current_->Pose(), reference_keyframe_);
+      last_frame_ = std::move(current_);
+    } else {
+      recorder_.AddLost(current_->Timestamp());
+    }
+    result.state = state_;
+    return result;
+  }
+
+  bool ok = false;
+  if (state_ == TrackingState::kOk) {
+    if (velocity_ && last_frame_) ok = TrackWithMotionModel();
+    if (!ok) {
+      ok = TrackReferenceKeyFrame();
+      if (ok) ++reference_fallbacks_;
+    }
+  } else {
+    // Lost: until relocalization exists, retry against the last reference keyframe from the
+    // last known pose.
+    ok = TrackReferenceKeyFrame();
+  }
+  if (ok) ok = TrackLocalMap();
+
+  if (!ok) {
+    spdlog::debug("frame {} ({:.6f}): tracking lost", current_->Id(), current_->Timestamp());
+    recorder_.AddLost(current_->Timestamp());
+    velocity_.reset();
+    if (options_.reset_when_lost) {
+      ResetMap();
+      state_ = TrackingState::kNotInitialized;
+    } else {
+      state_ = TrackingState::kLost;
+    }
+    result.state = state_;
+    return result;
+  }
+
+  state_ = TrackingState::kOk;
+  velocity_ = current_->Pose() * last_frame_->Pose().Inverse();
+  result.inliers = matches_inliers_;
+  if (NeedNewKeyFrame()) {
+    last_keyframe_ = CreateKeyFrame(*current_, map_, options_.new_points_per_keyframe);
+    last_keyframe_frame_id_ = current_->Id();
+    reference_keyframe_ = last_keyframe_;
+    result.new_keyframe = last_keyframe_;
+  }
+  current_->reference_keyframe = reference_keyframe_;
+  recorder_.AddTracked(current_->Timestamp(), current_->Pose(), reference_keyframe_);
+  // Outliers are not carried to the next frame's projection search.
+  for (std::size_t i = 0; i < current_->Size(); ++i) {
+    if (current_->outlier[i]) current_->map_points[i].reset();
+  }
+  last_frame_ = std::move(current_);
+  result.state = state_;
+  return result;
+}
+
+bool Tracker::Initialize() {
+  current_->SetPose(SE3::Identity());
+  const auto keyframe = CreateInitialKeyFrame(*current_, map_, options_.min_initial_points);
+  if (!keyframe) return false;
+  spdlog::debug("map initialized with {} points", map_.MapPointCount());
+  reference_keyframe_ = keyframe;
+  last_keyframe_ = keyframe;
+  last_keyframe_frame_id_ = current_->Id();
+  velocity_.reset();
+  return true;
+}
+
+bool Tracker::TrackWithMotionModel() {
+  current_->SetPose(*velocity_ * last_frame_->Pose());
+  std::fill(current_->map_points.begin(), current_->map_points.end(), nullptr);
+  int matches = matcher_.SearchByProjection(*current_, *last_frame_, kMotionModelRadius);
+  if (matches < kMinMotionMatches) {
+    std::fill(current_->map_points.begin(), current_->map_points.end(), nullptr);
+    matches = matcher_.SearchByProjection(*current_, *last_frame_, 2 * kMotionModelRadius);
+  }
+  if (matches < kMinMotionMatches) return false;
+  return OptimizeCurrentPose() >= kMinPoseInliers;
+}
+
+bool Tracker::TrackReferenceKeyFrame() {
+  if (!reference_keyframe_ || !last_frame_) return false;
+  std::fill(current_->map_points.begin(), current_->map_points.end(), nullptr);
+  const int matches = matcher_.SearchByDescriptors(*reference_keyframe_, *current_, 0.7);
+  if (matches < kMinReferenceMatches) return false;
+  current_->SetPose(last_frame_->Pose());
+  return OptimizeCurrentPose() >= kMinPoseInliers;
+}
+
+bool Tracker::TrackLocalMap() {
+  const LocalMap local = BuildLocalMap(*current_);
+  if (local.reference) reference_keyframe_ = local.reference;
+
+  // Points already matched are visible for sure and not searched again.
+  for (std::size_t i = 0; i < current_->Size(); ++i) {
+    const auto& point = current_->map_points[i];
+    if (!point) continue;
+    point->IncreaseVisible();
+    point->last_frame_seen_id = current_->Id();
+  }
+  std::vector<std::optional<Frame::Projection>> projections(local.points.size());
+  int to_search = 0;
+  for (std::size_t k = 0; k < local.points.size(); ++k) {
+    const auto& point = local.points[k];
+    if (point->last_frame_seen_id == current_->Id() || point->IsBad()) continue;
+    projections[k] = current_->ProjectIfVisible(*point, kMinViewCos);
+    if (projections[k]) {
+      point->IncreaseVisible();
+      ++to_search;
+    }
+  }
+  if (to_search > 0) {
+    matcher_.SearchByProjection(*current_, local.points, projections, kLocalMapRadius);
+  }
+  OptimizeCurrentPose();
+
+  matches_inliers_ = 0;
+  for (std::size_t i = 0; i < current_->Size(); ++i) {
+    const auto& point = current_->map_points[i];
+    if (!point) continue;
+    point->IncreaseFound();
+    if (point->ObservationCount() > 0) ++matches_inliers_;
+  }
+  return matches_inliers_ >= options_.min_inliers;
+}
+
+int Tracker::OptimizeCurrentPose() {
+  std::vector<PoseObservation> observations;
+  std::vector<std::size_t> slots;
+  const FrameFeatures& features = current_->Features();
+  for (std::size_t i = 0; i < current_->Size(); ++i) {
+    const auto& point = current_->map_points[i];
+    if (!point) continue;
+    const cv::KeyPoint& kp = features.KeypointsUn()[i];
+    PoseObservation observation;
+    observation.point_w = point->Position();
+    observation.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
+    observation.right_u = features.RightU(i);
+    observation.inv_sigma2 = current_->Geometry().pyramid.inv_sigma2[kp.octave];
+    observations.push_back(observation);
+    slots.push_back(i);
+  }
+  if (observations.size() < 3) return 0;
+  const PoseOptimizationResult result = OptimizePose(current_->Geometry().camera.Options(),
+                                                     current_->Pose(), observations, pose_options_);
+  current_->SetPose(result.T_cw);
+  int inliers = 0;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const std::size_t i = slots[k];
+    current_->outlier[i] = false;
+    if (result.outlier[k]) {
+      current_->map_points[i]->last_frame_seen_id = current_->Id();
+      current_->map_points[i].reset();
+    } else {
+      ++inliers;
+    }
+  }
+  return inliers;
+}
+
+bool Tracker::NeedNewKeyFrame() const {
+  KeyFrameEvidence evidence;
+  evidence.frames_since_keyframe = static_cast<int>(current_->Id() - last_keyframe_frame_id_);
+  evidence.max_frames = max_frames_between_keyframes_;
+  evidence.keyframes_in_map = static_cast<int>(map_.KeyFrameCount());
+  evidence.mapping_idle = true;
+  evidence.tracked_inliers = matches_inliers_;
+  const int min_observations = evidence.keyframes_in_map <= 2 ? 2 : 3;
+  evidence.reference_tracked_points =
+      reference_keyframe_ ? reference_keyframe_->TrackedMapPoints(min_observations) : 0;
+  const FrameFeatures& features = current_->Features();
+  for (std::size_t i = 0; i < current_->Size(); ++i) {
+    const float depth = features.Depth(i);
+    if (depth <= 0 || depth >= current_->Geometry().close_depth) continue;
+    if (current_->map_points[i] && !current_->outlier[i]) {
+      ++evidence.close_tracked;
+    } else {
+      ++evidence.close_untracked;
+    }
+  }
+  return ::drvslam::NeedNewKeyFrame(evidence);
+}
+
+void Tracker::ResetMap() {
+  spdlog::warn("tracking lost: starting a new map");
+  map_.Clear();
+  reference_keyframe_.reset();
+  last_keyframe_.reset();
+  last_frame_.reset();
+}
+
+}  // namespace drvslam

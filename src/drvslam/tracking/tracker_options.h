@@ -1,0 +1,28 @@
+// TrackerOptions: the tracking thread's settings ("Tracking.*" keys beside the ORB-SLAM2 ones).
+#pragma once
+
+#include "drvslam/core/settings_file.h"
+
+namespace drvslam {
+
+struct TrackerOptions {
+  // Features with valid depth needed in the first frame to build the initial map.
+  int min_initial_points = 500;
+  // A keyframe is due at the latest after this many frames (0: the camera fps).
+  int max_frames_between_keyframes = 0;
+  // Map points created from close depth per keyframe when few are tracked (ORB-SLAM2: 100).
+  int new_points_per_keyframe = 100;
+  // Inliers needed after local-map tracking for a frame to count as tracked.
+  int min_inliers = 30;
+  // When tracking is lost: start a new map (true) or keep trying to recover against the last
+  // reference keyframe (false, the default; relocalization proper needs the vocabulary).
+  bool reset_when_lost = false;
+
+  void Check() const;  // throws Error naming the bad key
+};
+
+// Reads Tracking.minInitialPoints, Tracking.maxFramesBetweenKeyframes,
+// Tracking.newPointsPerKeyframe, Tracking.minInliers and Tracking.resetWhenLost.
+TrackerOptions LoadTrackerOptions(const SettingsFile& file);
+
+}  // namespace drvslam

@@ -1,0 +1,56 @@
+#include "drvslam/tracking/trajectory_recorder.h"
+
+namespace drvslam {
+
+void TrajectoryRecorder::AddTracked(double timestamp, const SE3& T_cw,
+                                    const std::shared_ptr<KeyFrame>& reference) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  entries_.push_back({timestamp, true, T_cw * reference->InversePose(), reference});
+}
+
+void TrajectoryRecorder::AddLost(double timestamp) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  entries_.push_back({timestamp, false, SE3(), nullptr});
+}
+
+std::size_t TrajectoryRecorder::FrameCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return entries_.size();
+}
+
+std::size_t TrajectoryRecorder::TrackedCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::size_t tracked = 0;
+  for (const Entry& entry : entries_) tracked += entry.tracked ? 1 : 0;
+  return tracked;
+}
+
+drvslam::Trajectory TrajectoryRecorder::CameraTrajectory() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  drvslam::Trajectory trajectory;
+  for (const Entry& entry : entries_) {
+    if (!entry.tracked) continue;
+    // Walk up the spanning tree past removed keyframes, composing the relative poses.
+    std::shared_ptr<KeyFrame> reference = entry.reference;
+    SE3 T_cr = entry.T_cr;
+    while (reference->IsBad() && reference->Parent()) {
+      const auto parent = reference->Parent();
+      T_cr = T_cr * reference->Pose() * parent->InversePose();
+      reference = parent;
+    }
+    const SE3 T_cw = T_cr * reference->Pose();
+    trajectory.push_back({entry.timestamp, T_cw.Inverse()});
+  }
+  return trajectory;
+}
+
+drvslam::Trajectory KeyFrameTrajectory(const std::vector<std::shared_ptr<KeyFrame>>& keyframes) {
+  drvslam::Trajectory trajectory;
+  for (const auto& keyframe : keyframes) {
+    if (keyframe->IsBad()) continue;
+    trajectory.push_back({keyframe->Timestamp(), keyframe->InversePose()});
+  }
+  return trajectory;
+}
+
+}  // namespace drvslam

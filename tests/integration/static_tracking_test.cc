@@ -1,0 +1,110 @@
+// End to end on synthetic sequences: synthesize with the CLI, run SLAM through the library in
+// sequential mode, evaluate against the exact ground truth.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "drvslam/core/error.h"
+#include "drvslam/eval/ate.h"
+#include "drvslam/io/trajectory_io.h"
+#include "drvslam/sequence_runner.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+class StaticTrackingTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = fs::temp_directory_path() / "drvslam_integration_static";
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    const std::string command = std::string(DRVSLAM_CLI) +
+                                " --log-level warn synth --scenario static_xyz --frames 90 "
+                                "--seed 3 --out " +
+                                (root_ / "seq").string() + " > " + (root_ / "synth.log").string();
+    ASSERT_EQ(std::system(command.c_str()), 0) << ReadFile(root_ / "synth.log");
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+
+  static RunSummary Run(const std::string& out_name) {
+    RunOptions options;
+    options.dataset = (root_ / "seq").string();
+    options.out_dir = (root_ / out_name).string();
+    options.sequential = true;
+    return RunSequence(options);
+  }
+
+  static fs::path root_;
+};
+
+fs::path StaticTrackingTest::root_;
+
+TEST_F(StaticTrackingTest, TracksEveryFrameWithinOneCentimetre) {
+  const RunSummary summary = Run("run1");
+  EXPECT_EQ(summary.stats.frames, 90u);
+  EXPECT_EQ(summary.stats.tracked, 90u);
+  EXPECT_GE(summary.stats.keyframes, 2u);
+  const Trajectory gt = ReadTumTrajectory((root_ / "seq" / "groundtruth.txt").string());
+  const Trajectory est = ReadTumTrajectory(summary.camera_trajectory_path);
+  const AteResult ate = ComputeAte(gt, est, AteOptions{});
+  EXPECT_EQ(ate.matched, 90u);
+  EXPECT_LT(ate.errors.rmse, 0.01) << "ATE RMSE " << ate.errors.rmse << " m";
+  // The stats file is written next to the trajectories.
+  const std::string stats = ReadFile(root_ / "run1" / "stats.json");
+  EXPECT_NE(stats.find("\"tracked_ratio\": 1.0"), std::string::npos) << stats;
+}
+
+TEST_F(StaticTrackingTest, SequentialModeIsBitIdentical) {
+  Run("a");
+  Run("b");
+  const std::string a = ReadFile(root_ / "a" / "CameraTrajectory.txt");
+  const std::string b = ReadFile(root_ / "b" / "CameraTrajectory.txt");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(ReadFile(root_ / "a" / "KeyFrameTrajectory.txt"),
+            ReadFile(root_ / "b" / "KeyFrameTrajectory.txt"));
+}
+
+TEST_F(StaticTrackingTest, AMissingFrameKeepsTheTrajectorySoFar) {
+  // Copy the sequence and delete one depth image in the middle.
+  const fs::path broken = root_ / "broken";
+  fs::copy(root_ / "seq", broken, fs::copy_options::recursive);
+  std::vector<fs::path> depth_files;
+  for (const auto& entry : fs::directory_iterator(broken / "depth")) {
+    depth_files.push_back(entry.path());
+  }
+  std::sort(depth_files.begin(), depth_files.end());
+  fs::remove(depth_files[40]);
+  RunOptions options;
+  options.dataset = broken.string();
+  options.out_dir = (root_ / "broken_out").string();
+  options.sequential = true;
+  try {
+    RunSequence(options);
+    FAIL() << "a missing depth image must be an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(depth_files[40].filename().string()), std::string::npos)
+        << e.what();
+  }
+  const Trajectory partial =
+      ReadTumTrajectory((root_ / "broken_out" / "CameraTrajectory.txt").string());
+  EXPECT_EQ(partial.size(), 40u);
+}
+
+}  // namespace
+}  // namespace drvslam
