@@ -1,0 +1,89 @@
+// Speed of the synthetic sequence generator: rendering one 640x480 frame (exact geometry, then
+// with the default sensor effects), encoding its three PNGs, and building the scene. The render
+// benchmarks report process CPU time (all threads) beside wall time, so a loaded machine still
+// shows what a frame costs.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+
+#include "drvslam/synth/sequence_writer.h"
+#include "drvslam/synth/synth_sequence.h"
+
+namespace {
+
+using drvslam::synth::RenderBuffers;
+using drvslam::synth::SynthOptions;
+using drvslam::synth::SynthSequence;
+
+const SynthSequence& Sequence() {
+  static const std::unique_ptr<SynthSequence> sequence = [] {
+    SynthOptions options;
+    options.scenario = "walking_xyz";
+    options.frames = 300;
+    options.opencv_samples = DRVSLAM_OPENCV_DATA_DIR;
+    return std::make_unique<SynthSequence>(options);
+  }();
+  return *sequence;
+}
+
+void BM_RenderFrame(benchmark::State& state) {
+  const SynthSequence& sequence = Sequence();
+  int frame = 0;
+  for (auto _ : state) {
+    RenderBuffers buffers = sequence.Render(frame, /*apply_sensor=*/false);
+    benchmark::DoNotOptimize(buffers.bgr.data);
+    frame = (frame + 7) % sequence.FrameCount();
+  }
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RenderFrame)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
+void BM_RenderFrameWithSensor(benchmark::State& state) {
+  const SynthSequence& sequence = Sequence();
+  int frame = 0;
+  for (auto _ : state) {
+    RenderBuffers buffers = sequence.Render(frame);
+    benchmark::DoNotOptimize(buffers.bgr.data);
+    frame = (frame + 7) % sequence.FrameCount();
+  }
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RenderFrameWithSensor)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+void BM_EncodeFramePngs(benchmark::State& state) {
+  const RenderBuffers buffers = Sequence().Render(0);
+  const cv::Mat depth = drvslam::synth::EncodeDepth(buffers.depth, 5000.0);
+  const std::vector<int> parameters = {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
+                                       cv::IMWRITE_PNG_STRATEGY_RLE};
+  std::vector<uchar> bytes;
+  for (auto _ : state) {
+    cv::imencode(".png", buffers.bgr, bytes, parameters);  // as SequenceWriter writes them
+    cv::imencode(".png", depth, bytes, parameters);
+    cv::imencode(".png", buffers.instance, bytes, parameters);
+    benchmark::DoNotOptimize(bytes.data());
+  }
+}
+BENCHMARK(BM_EncodeFramePngs)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_BuildSequence(benchmark::State& state) {
+  SynthOptions options;
+  options.scenario = "walking_xyz";
+  options.frames = 300;
+  options.opencv_samples = DRVSLAM_OPENCV_DATA_DIR;
+  for (auto _ : state) {
+    SynthSequence sequence(options);
+    benchmark::DoNotOptimize(sequence.FrameCount());
+  }
+}
+BENCHMARK(BM_BuildSequence)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+}  // namespace
+
+BENCHMARK_MAIN();

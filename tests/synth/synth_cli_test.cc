@@ -1,0 +1,116 @@
+// Runs the built `drvslam synth` (DRVSLAM_CLI) the way a user would.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "test_folder.h"
+
+namespace drvslam::synth {
+namespace {
+
+using testing::ReadFileBytes;
+using testing::TestFolder;
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result RunCli(const std::string& arguments) {
+  Result result;
+  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  std::size_t read = 0;
+  while ((read = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0)
+    result.output.append(buffer, read);
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+int CountFiles(const std::string& folder) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    count += entry.is_regular_file();
+  return count;
+}
+
+TEST(SynthCliTest, WritesATumLayoutSequence) {
+  TestFolder folder("cli");
+  const std::string out = folder / "walking";
+  const Result result =
+      RunCli("synth --scenario walking_xyz --frames 5 --width 320 --height 240 --out " + out);
+  ASSERT_EQ(result.status, 0) << result.output;
+  EXPECT_NE(result.output.find("frames:      5 at 320x240, 2 actors"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("fps"), std::string::npos);
+  EXPECT_NE(result.output.find("cover"), std::string::npos);
+  for (const char* sub : {"rgb", "depth", "masks"})
+    EXPECT_EQ(CountFiles(out + "/" + sub), 5) << sub;
+  for (const char* file : {"rgb.txt", "depth.txt", "associations.txt", "groundtruth.txt",
+                           "instances.txt", "settings.yaml"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + file)) << file;
+  }
+  const std::string ground_truth = ReadFileBytes(out + "/groundtruth.txt");
+  EXPECT_NE(ground_truth.find("1305031102.175304 "), std::string::npos);
+  // Running again into the same folder replaces the earlier sequence.
+  const Result again =
+      RunCli("synth --scenario static_xyz --frames 3 --width 160 --height 120 --out " + out);
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(CountFiles(out + "/rgb"), 3);
+}
+
+TEST(SynthCliTest, BadInputExitsWithStatus2) {
+  TestFolder folder("cli_bad");
+  std::filesystem::create_directories(folder / "empty");
+  const struct {
+    std::string arguments;
+    std::string expected;
+  } cases[] = {
+      {"synth --scenario flying_xyz --frames 2 --out " + folder / "a", "error: unknown scenario"},
+      {"synth --scenario walking_xyz --frames 0 --out " + folder / "b", "error: --frames 0"},
+      {"synth --scenario walking_xyz --frames 2 --trajectory " + folder / "missing.txt" +
+           " --out " + folder / "c",
+       "error: " + folder / "missing.txt"},
+      {"synth --scenario walking_xyz --frames 2 --textures " + folder / "empty" + " --out " +
+           folder / "d",
+       "no images"},
+      {"synth --scenario walking_xyz --frames 2", "error: synth: --out DIR is required"},
+      {"synth --scenario static_xyz --actors 2 --frames 2 --out " + folder / "e",
+       "error: --actors 2"},
+  };
+  for (const auto& c : cases) {
+    const Result result = RunCli(c.arguments);
+    EXPECT_EQ(result.status, 2) << c.arguments << "\n" << result.output;
+    EXPECT_NE(result.output.find(c.expected), std::string::npos) << c.arguments << "\n"
+                                                                 << result.output;
+  }
+  // A folder holding something else is never overwritten.
+  testing::WriteFileText(folder / "precious.txt", "keep me");
+  const Result refused = RunCli("synth --scenario static_xyz --frames 2 --out " + folder.Path());
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_EQ(ReadFileBytes(folder / "precious.txt"), "keep me");
+}
+
+TEST(SynthCliTest, HelpAndListDocumentTheOptions) {
+  const Result help = RunCli("synth --help");
+  EXPECT_EQ(help.status, 0);
+  for (const char* option : {"--scenario", "--frames", "--seed", "--trajectory", "--textures",
+                             "--actors", "--out", "--billboards", "--clean"}) {
+    EXPECT_NE(help.output.find(option), std::string::npos) << option;
+  }
+  const Result list = RunCli("synth --list");
+  EXPECT_EQ(list.status, 0);
+  for (const char* name : {"walking_xyz", "walking_static", "walking_rpy", "walking_halfsphere",
+                           "sitting_static", "sitting_xyz", "static_xyz", "static_halfsphere"}) {
+    EXPECT_NE(list.output.find(name), std::string::npos) << name;
+  }
+}
+
+}  // namespace
+}  // namespace drvslam::synth
