@@ -1,0 +1,30 @@
+// drvslam demo: the embedded default (synthesize, run, evaluate, report), no download needed.
+#include <cstdio>
+
+#include "command_registry.h"
+#include "drvslam/demo_runner.h"
+
+namespace drvslam::cli {
+namespace {
+
+const bool kRegistered = RegisterCommand("demo", [](CLI::App& root) {
+  auto options = std::make_shared<DemoOptions>();
+  CLI::App* command = root.add_subcommand(
+      "demo", "synthesize static and dynamic sequences, run SLAM, evaluate, write a report");
+  command->add_option("--out", options->out_dir, "output folder")->capture_default_str();
+  command->add_option("--frames", options->frames, "frames per sequence")
+      ->capture_default_str()
+      ->check(CLI::Range(10, 100000));
+  command->add_option("--seed", options->seed, "synthetic scene seed")->capture_default_str();
+  command->add_option("--scenarios", options->scenarios, "synthetic scenarios to run")
+      ->capture_default_str();
+  command->callback([options] {
+    const auto results =
+        RunDemo(*options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+    std::printf("\n%s", FormatDemoReport(results).c_str());
+    std::printf("report: %s/report.md\n", options->out_dir.c_str());
+  });
+});
+
+}  // namespace
+}  // namespace drvslam::cli
