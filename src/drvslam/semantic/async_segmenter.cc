@@ -1,0 +1,173 @@
+#include "drvslam/semantic/async_segmenter.h"
+
+#include <chrono>
+#include <iterator>
+#include <optional>
+#include <utility>
+
+#include "drvslam/core/error.h"
+
+namespace drvslam {
+
+AsyncSegmenter::AsyncSegmenter(std::shared_ptr<Segmenter> segmenter,
+                               const AsyncSegmenterOptions& options)
+    : segmenter_(std::move(segmenter)), options_(options), queue_(options.queue_capacity) {
+  if (!segmenter_) throw Error("AsyncSegmenter: no segmenter given");
+  if (options_.keep_results == 0) options_.keep_results = 1;
+  if (!options_.sequential) worker_ = std::thread([this] { WorkerLoop(); });
+}
+
+AsyncSegmenter::~AsyncSegmenter() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  queue_.Close();
+  if (worker_.joinable()) worker_.join();
+}
+
+void AsyncSegmenter::Submit(std::size_t frame_index, double timestamp, const cv::Mat& bgr) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (has_submitted_ && frame_index <= last_index_) {
+      throw Error("AsyncSegmenter: frame " + std::to_string(frame_index) +
+                  " submitted after frame " + std::to_string(last_index_) +
+                  "; frame indices must increase");
+    }
+    has_submitted_ = true;
+    last_index_ = frame_index;
+    slots_[frame_index] = Slot{};
+    ++stats_.submitted;
+  }
+  Job job{frame_index, timestamp, bgr.clone()};
+  if (options_.sequential) {
+    Run(job);
+    return;
+  }
+  const bool accepted =
+      options_.drop_when_busy ? queue_.PushDropOldest(std::move(job)) : queue_.Push(std::move(job));
+  if (!accepted) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    slots_[frame_index].state = State::kDropped;
+    ++stats_.dropped;
+    finished_.notify_all();
+  }
+}
+
+void AsyncSegmenter::WorkerLoop() {
+  while (std::optional<Job> job = queue_.Pop()) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      // The queue is first-in first-out, so frames still marked queued that are older than this
+      // one were pushed out of a full queue.
+      for (auto& [index, slot] : slots_) {
+        if (index >= job->frame_index) break;
+        if (slot.state == State::kQueued) {
+          slot.state = State::kDropped;
+          ++stats_.dropped;
+        }
+      }
+      if (stopping_) {
+        slots_[job->frame_index].state = State::kDropped;
+        ++stats_.dropped;
+        finished_.notify_all();
+        continue;
+      }
+      finished_.notify_all();
+    }
+    Run(*job);
+  }
+}
+
+void AsyncSegmenter::Run(const Job& job) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    slots_[job.frame_index].state = State::kRunning;
+  }
+  auto frame = std::make_shared<SegmentedFrame>();
+  std::exception_ptr error;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    frame->segmentation = segmenter_->Segment(job.image, job.timestamp, job.frame_index);
+  } catch (...) {
+    error = std::current_exception();
+  }
+  frame->segment_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  frame->image = job.image;
+
+  std::lock_guard<std::mutex> lock(mutex_);
+  Slot& slot = slots_[job.frame_index];
+  if (error) {
+    slot.state = State::kFailed;
+    slot.error = error;
+    ++stats_.failed;
+  } else {
+    slot.state = State::kDone;
+    slot.result = frame;
+    ++stats_.segmented;
+    segment_ms_.push_back(frame->segment_ms);
+    if (!latest_ || latest_->segmentation.frame_index < job.frame_index) latest_ = frame;
+  }
+  TrimLocked();
+  finished_.notify_all();
+}
+
+void AsyncSegmenter::TrimLocked() {
+  std::size_t finished = 0;
+  for (auto it = slots_.rbegin(); it != slots_.rend(); ++it) {
+    if (it->second.state == State::kQueued || it->second.state == State::kRunning) continue;
+    if (++finished > options_.keep_results) {
+      slots_.erase(slots_.begin(), it.base());
+      // Older unfinished slots cannot exist: the worker finishes frames in order.
+      return;
+    }
+  }
+}
+
+std::shared_ptr<const SegmentedFrame> AsyncSegmenter::Wait(std::size_t frame_index) {
+  const auto missing = [&] {
+    return Error("AsyncSegmenter: frame " + std::to_string(frame_index) +
+                 " was never submitted, or its result is no longer kept");
+  };
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (slots_.count(frame_index) == 0) throw missing();
+  // Look the slot up afresh on every wake-up: trimming may erase it meanwhile.
+  finished_.wait(lock, [&] {
+    const auto slot = slots_.find(frame_index);
+    return slot == slots_.end() ||
+           (slot->second.state != State::kQueued && slot->second.state != State::kRunning);
+  });
+  const auto slot = slots_.find(frame_index);
+  if (slot == slots_.end()) throw missing();
+  switch (slot->second.state) {
+    case State::kDone:
+      return slot->second.result;
+    case State::kFailed:
+      std::rethrow_exception(slot->second.error);
+    default:
+      throw Error("AsyncSegmenter: frame " + std::to_string(frame_index) +
+                  " was dropped because segmentation was busy");
+  }
+}
+
+std::shared_ptr<const SegmentedFrame> AsyncSegmenter::TryGet(std::size_t frame_index) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto slot = slots_.find(frame_index);
+  if (slot == slots_.end() || slot->second.state != State::kDone) return nullptr;
+  return slot->second.result;
+}
+
+std::shared_ptr<const SegmentedFrame> AsyncSegmenter::Latest() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_;
+}
+
+AsyncSegmenterStats AsyncSegmenter::Stats() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  AsyncSegmenterStats stats = stats_;
+  stats.segment_ms = SpreadOf(segment_ms_);
+  return stats;
+}
+
+}  // namespace drvslam

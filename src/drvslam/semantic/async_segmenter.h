@@ -1,0 +1,110 @@
+// AsyncSegmenter: the segmentation thread. Submit() hands it a frame as soon as the frame
+// arrives, so the network runs while the caller extracts ORB features; Wait() then collects
+// that frame's masks. In sequential mode Submit() segments inline, so runs are deterministic.
+// With drop_when_busy (sensor-rate tracking), frames queued behind a slow network are dropped
+// instead of piling up, and Latest() gives the newest finished masks without blocking.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <thread>
+#include <vector>
+
+#include "drvslam/core/bounded_queue.h"
+#include "drvslam/semantic/latency_stats.h"
+#include "drvslam/semantic/segmenter.h"
+
+namespace drvslam {
+
+// One finished segmentation with the image it was computed on (needed to carry its masks to
+// later frames by optical flow).
+struct SegmentedFrame {
+  Segmentation segmentation;
+  cv::Mat image;
+  double segment_ms = 0.0;  // wall time of Segmenter::Segment
+};
+
+struct AsyncSegmenterOptions {
+  bool sequential = false;         // segment inside Submit() on the caller's thread
+  std::size_t queue_capacity = 2;  // frames waiting for the worker
+  bool drop_when_busy = false;     // a full queue drops its oldest frame instead of blocking
+  std::size_t keep_results = 8;    // finished frames kept for Wait()/TryGet()
+};
+
+struct AsyncSegmenterStats {
+  std::size_t submitted = 0;
+  std::size_t segmented = 0;
+  std::size_t failed = 0;   // Segment threw; Wait() rethrows
+  std::size_t dropped = 0;  // skipped because the worker was busy (drop_when_busy)
+  Spread segment_ms;
+};
+
+class AsyncSegmenter {
+ public:
+  // Throws drvslam::Error when `segmenter` is null.
+  explicit AsyncSegmenter(std::shared_ptr<Segmenter> segmenter,
+                          const AsyncSegmenterOptions& options = {});
+  // Frames still queued are dropped; the one being segmented is finished first.
+  ~AsyncSegmenter();
+  AsyncSegmenter(const AsyncSegmenter&) = delete;
+  AsyncSegmenter& operator=(const AsyncSegmenter&) = delete;
+
+  // Starts segmenting a copy of `bgr`. Frame indices must increase; throws drvslam::Error
+  // otherwise. May block while the queue is full (unless drop_when_busy). Call from one thread
+  // (the tracking thread); Wait/TryGet/Latest/Stats may be called from any.
+  void Submit(std::size_t frame_index, double timestamp, const cv::Mat& bgr);
+  // Blocks until frame `frame_index` is segmented and returns it; rethrows the segmenter's
+  // exception for that frame; throws drvslam::Error when the frame was never submitted, was
+  // dropped, or its result is no longer kept.
+  std::shared_ptr<const SegmentedFrame> Wait(std::size_t frame_index);
+  // That frame's result when it is finished, else nullptr; never blocks.
+  std::shared_ptr<const SegmentedFrame> TryGet(std::size_t frame_index) const;
+  // The finished frame with the highest index, or nullptr; never blocks.
+  std::shared_ptr<const SegmentedFrame> Latest() const;
+
+  AsyncSegmenterStats Stats() const;
+  const Segmenter& Backend() const { return *segmenter_; }
+
+ private:
+  enum class State { kQueued, kRunning, kDone, kFailed, kDropped };
+  struct Slot {
+    State state = State::kQueued;
+    std::shared_ptr<const SegmentedFrame> result;
+    std::exception_ptr error;
+  };
+  struct Job {
+    std::size_t frame_index;
+    double timestamp;
+    cv::Mat image;
+  };
+
+  void WorkerLoop();
+  // Segments one job and records the outcome in its slot.
+  void Run(const Job& job);
+  // Forgets finished slots beyond keep_results. Requires mutex_.
+  void TrimLocked();
+
+  std::shared_ptr<Segmenter> segmenter_;
+  AsyncSegmenterOptions options_;
+  BoundedQueue<Job> queue_;
+
+  // mutex_ guards slots_, latest_, stats_, segment_ms_, stopping_ and has_submitted_/last_index_.
+  mutable std::mutex mutex_;
+  std::condition_variable finished_;
+  std::map<std::size_t, Slot> slots_;
+  std::shared_ptr<const SegmentedFrame> latest_;
+  AsyncSegmenterStats stats_;
+  std::vector<double> segment_ms_;
+  bool stopping_ = false;
+  bool has_submitted_ = false;
+  std::size_t last_index_ = 0;
+
+  std::thread worker_;
+};
+
+}  // namespace drvslam

@@ -1,0 +1,36 @@
+// MaskSource: what the tracking thread asks for the masks of the frame it is tracking. Normally
+// it waits for that frame's segmentation. At sensor rate (--realtime) it never waits: it takes
+// the frame's own masks if they are ready, else the newest finished ones carried to the current
+// image by optical flow, and records how old they were (SegmentationLatencyStats).
+#pragma once
+
+#include <cstddef>
+#include <opencv2/core.hpp>
+
+#include "drvslam/semantic/async_segmenter.h"
+#include "drvslam/semantic/latency_stats.h"
+#include "drvslam/semantic/mask_propagator.h"
+
+namespace drvslam {
+
+class MaskSource {
+ public:
+  // `segmenter` must outlive this object.
+  MaskSource(AsyncSegmenter& segmenter, const MaskPropagator& propagator, bool realtime);
+
+  // The masks for frame `frame_index` (image `bgr`, already submitted to the segmenter when not
+  // realtime). Blocking mode rethrows the segmenter's errors. Realtime mode returns an empty
+  // segmentation of the image's size when nothing has finished yet. Call from one thread.
+  Segmentation MasksFor(std::size_t frame_index, double timestamp, const cv::Mat& bgr);
+
+  SegmentationLatencyStats Latency() const { return recorder_.Summary(); }
+  bool Realtime() const { return realtime_; }
+
+ private:
+  AsyncSegmenter& segmenter_;
+  MaskPropagator propagator_;
+  bool realtime_;
+  LatencyRecorder recorder_;
+};
+
+}  // namespace drvslam

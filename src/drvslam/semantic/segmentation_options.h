@@ -1,0 +1,62 @@
+// SegmentationOptions: the Segmentation.* section of a settings file (which backend segments the
+// frames, the network's thresholds and device, where mask files live, and which classes may move
+// or matter to the dense map), with defaults that work without any settings file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "drvslam/core/settings_file.h"
+
+namespace drvslam {
+
+enum class SegmenterBackend { kYolo, kMaskFiles, kGroundTruth, kNone };
+// kAuto picks CUDA when OpenCV was built with it, else OpenCV's own CPU code.
+enum class DnnBackend { kAuto, kOpenCv, kCuda };
+enum class DnnTarget { kAuto, kCpu, kOpenCl, kCuda, kCudaFp16 };
+// How mask files are matched to frames: by a timestamp stem ("1305031102.175304.png"), by the
+// frame index ("12.png", "000012.png"), or kAuto: timestamps when any stem has a decimal point.
+enum class MaskNaming { kAuto, kTimestamp, kIndex };
+// How older masks are carried to the current frame when segmentation lags (--realtime).
+enum class MaskPropagation { kDenseFlow, kSparseFlow, kNone };
+
+struct SegmentationOptions {
+  SegmenterBackend backend = SegmenterBackend::kNone;
+  std::string model;                     // ONNX file (yolo)
+  std::vector<std::string> class_names;  // overrides the model's metadata names when set
+  double score_threshold = 0.25;
+  double nms_threshold = 0.45;  // IoU above which the weaker box of one class is dropped
+  double mask_threshold = 0.5;  // on sigmoid(coefficients x prototypes)
+  int max_detections = 100;
+  DnnBackend dnn_backend = DnnBackend::kAuto;
+  DnnTarget dnn_target = DnnTarget::kAuto;
+  int dnn_threads = 0;  // 0 keeps OpenCV's thread count (process-wide in OpenCV)
+
+  std::string masks_dir = "masks";  // mask-file backend; relative paths are under the dataset
+  MaskNaming mask_naming = MaskNaming::kAuto;
+  // COCO class given to mask ids that no instances.txt names, and to binary (0/255) masks.
+  std::string mask_class = "person";
+
+  MaskPropagation propagation = MaskPropagation::kDenseFlow;
+
+  std::vector<std::string> moving_classes = {"person", "bicycle", "car",   "motorcycle",
+                                             "bus",    "truck",   "bird",  "cat",
+                                             "dog",    "horse",   "sheep", "cow"};
+  std::vector<std::string> key_objects = {"book", "laptop", "keyboard",   "mouse", "tv",
+                                          "cup",  "bottle", "cell phone", "remote"};
+
+  // Throws drvslam::Error naming the first bad Segmentation.* key and its value.
+  void Check() const;
+};
+
+// Reads every Segmentation.* key (absent keys keep their defaults) and checks the result; errors
+// name the file and the key.
+SegmentationOptions LoadSegmentationOptions(const SettingsFile& file);
+
+// Settings spellings of the enums ("yolo", "masks", "gt", "none", ...), for logs and help text.
+std::string ToString(SegmenterBackend backend);
+std::string ToString(MaskPropagation propagation);
+// Parses a backend name; throws Error naming `key` on anything else.
+SegmenterBackend ParseSegmenterBackend(const std::string& name, const std::string& key);
+
+}  // namespace drvslam

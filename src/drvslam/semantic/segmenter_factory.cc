@@ -1,0 +1,33 @@
+#include "drvslam/semantic/segmenter_factory.h"
+
+#include <filesystem>
+
+#include "drvslam/core/error.h"
+#include "drvslam/semantic/ground_truth_segmenter.h"
+#include "drvslam/semantic/mask_file_segmenter.h"
+#include "drvslam/semantic/yolo_segmenter.h"
+
+namespace drvslam {
+
+std::unique_ptr<Segmenter> CreateSegmenter(const SegmentationOptions& options,
+                                           const std::string& dataset_dir,
+                                           std::vector<std::string> frame_names) {
+  options.Check();
+  switch (options.backend) {
+    case SegmenterBackend::kYolo:
+      return std::make_unique<YoloSegmenter>(options);
+    case SegmenterBackend::kMaskFiles: {
+      std::filesystem::path dir(options.masks_dir);
+      if (dir.is_relative() && !dataset_dir.empty()) dir = std::filesystem::path(dataset_dir) / dir;
+      return std::make_unique<MaskFileSegmenter>(dir.string(), options, std::move(frame_names));
+    }
+    case SegmenterBackend::kGroundTruth:
+      if (dataset_dir.empty()) throw Error("the gt segmenter needs the sequence folder");
+      return std::make_unique<GroundTruthSegmenter>(dataset_dir);
+    case SegmenterBackend::kNone:
+      return nullptr;
+  }
+  return nullptr;
+}
+
+}  // namespace drvslam

@@ -1,0 +1,21 @@
+// CreateSegmenter: builds the backend a settings file (or the --segmenter option) names, so the
+// system and the CLI never construct backends themselves.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "drvslam/semantic/segmentation_options.h"
+#include "drvslam/semantic/segmenter.h"
+
+namespace drvslam {
+
+// yolo: options.model; masks: options.masks_dir (relative paths under `dataset_dir`), with
+// `frame_names` (each frame's colour image file) when known; gt: the synthetic sequence in
+// `dataset_dir`; none: nullptr. Throws drvslam::Error from the backend's constructor.
+std::unique_ptr<Segmenter> CreateSegmenter(const SegmentationOptions& options,
+                                           const std::string& dataset_dir = "",
+                                           std::vector<std::string> frame_names = {});
+
+}  // namespace drvslam

@@ -1,0 +1,150 @@
+#include "drvslam/semantic/async_segmenter.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <memory>
+#include <thread>
+
+#include "drvslam/core/error.h"
+#include "fake_segmenter.h"
+
+namespace drvslam {
+namespace {
+
+using testing::FakeSegmenter;
+
+const cv::Mat kImage(48, 64, CV_8UC3, cv::Scalar::all(50));
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+TEST(AsyncSegmenterTest, ReturnsEachFramesOwnResultOnAWorkerThread) {
+  auto fake = std::make_shared<FakeSegmenter>();
+  AsyncSegmenter segmenter(fake);
+  EXPECT_EQ(segmenter.Latest(), nullptr);
+  for (std::size_t i = 0; i < 5; ++i) segmenter.Submit(i, 0.1 * i, kImage);
+  for (std::size_t i = 0; i < 5; ++i) {
+    const auto frame = segmenter.Wait(i);
+    ASSERT_NE(frame, nullptr);
+    EXPECT_EQ(frame->segmentation.frame_index, i);
+    EXPECT_DOUBLE_EQ(frame->segmentation.timestamp, 0.1 * i);
+    EXPECT_EQ(frame->segmentation.instances.at(0).class_id, static_cast<int>(i));
+    EXPECT_EQ(frame->image.size(), kImage.size());
+  }
+  EXPECT_EQ(segmenter.Latest()->segmentation.frame_index, 4u);
+  EXPECT_EQ(fake->Threads().count(std::this_thread::get_id()), 0u);
+  const AsyncSegmenterStats stats = segmenter.Stats();
+  EXPECT_EQ(stats.submitted, 5u);
+  EXPECT_EQ(stats.segmented, 5u);
+  EXPECT_EQ(stats.dropped, 0u);
+}
+
+TEST(AsyncSegmenterTest, SegmentationOverlapsTheCallersWork) {
+  // 120 ms of segmentation and 120 ms of caller work take ~120 ms together, not 240.
+  auto fake = std::make_shared<FakeSegmenter>(120);
+  AsyncSegmenter segmenter(fake);
+  const auto start = std::chrono::steady_clock::now();
+  segmenter.Submit(0, 0.0, kImage);
+  std::this_thread::sleep_for(std::chrono::milliseconds(120));
+  segmenter.Wait(0);
+  const double elapsed = MillisecondsSince(start);
+  EXPECT_GE(elapsed, 120.0);
+  EXPECT_LT(elapsed, 200.0);
+  EXPECT_GE(segmenter.Stats().segment_ms.median, 119.0);
+}
+
+TEST(AsyncSegmenterTest, SequentialModeSegmentsInsideSubmitOnTheCallersThread) {
+  auto fake = std::make_shared<FakeSegmenter>();
+  AsyncSegmenterOptions options;
+  options.sequential = true;
+  AsyncSegmenter segmenter(fake, options);
+  segmenter.Submit(3, 1.0, kImage);
+  ASSERT_NE(segmenter.TryGet(3), nullptr);  // finished before Submit returned
+  EXPECT_EQ(segmenter.Wait(3)->segmentation.instances.at(0).class_id, 3);
+  EXPECT_EQ(fake->Threads(), std::set<std::thread::id>{std::this_thread::get_id()});
+}
+
+TEST(AsyncSegmenterTest, ErrorsReachTheWaiterAndOtherFramesGoOn) {
+  auto fake = std::make_shared<FakeSegmenter>(0, std::set<std::size_t>{2});
+  AsyncSegmenter segmenter(fake);
+  for (std::size_t i = 1; i <= 3; ++i) segmenter.Submit(i, 0.0, kImage);
+  EXPECT_NO_THROW(segmenter.Wait(1));
+  try {
+    segmenter.Wait(2);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "fake: frame 2");
+  }
+  EXPECT_EQ(segmenter.Wait(3)->segmentation.frame_index, 3u);
+  EXPECT_EQ(segmenter.Stats().failed, 1u);
+  EXPECT_THROW(segmenter.Wait(9), Error);                 // never submitted
+  EXPECT_THROW(segmenter.Submit(3, 0.0, kImage), Error);  // indices must increase
+}
+
+TEST(AsyncSegmenterTest, BusyWorkerDropsQueuedFramesInRealtimeMode) {
+  auto fake = std::make_shared<FakeSegmenter>();
+  AsyncSegmenterOptions options;
+  options.drop_when_busy = true;
+  options.queue_capacity = 1;
+  AsyncSegmenter segmenter(fake, options);
+  fake->Close();
+  segmenter.Submit(1, 0.0, kImage);
+  fake->AwaitStarted(1);  // frame 1 is being segmented, the queue is empty
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 2; i <= 5; ++i) segmenter.Submit(i, 0.0, kImage);
+  EXPECT_LT(MillisecondsSince(start), 100.0);  // never blocked
+  EXPECT_EQ(segmenter.TryGet(1), nullptr);
+  EXPECT_EQ(segmenter.Latest(), nullptr);
+  fake->Open();
+  EXPECT_EQ(segmenter.Wait(5)->segmentation.frame_index, 5u);
+  EXPECT_EQ(segmenter.Wait(1)->segmentation.frame_index, 1u);
+  for (std::size_t i = 2; i <= 4; ++i) {
+    try {
+      segmenter.Wait(i);
+      FAIL() << "frame " << i << " was not dropped";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("dropped"), std::string::npos);
+    }
+  }
+  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{1, 5}));
+  EXPECT_EQ(segmenter.Stats().dropped, 3u);
+  EXPECT_EQ(segmenter.Latest()->segmentation.frame_index, 5u);
+}
+
+TEST(AsyncSegmenterTest, OldResultsAreForgottenBeyondTheKeepLimit) {
+  AsyncSegmenterOptions options;
+  options.keep_results = 2;
+  options.sequential = true;
+  AsyncSegmenter segmenter(std::make_shared<FakeSegmenter>(), options);
+  for (std::size_t i = 0; i < 4; ++i) segmenter.Submit(i, 0.0, kImage);
+  EXPECT_THROW(segmenter.Wait(1), Error);
+  EXPECT_NO_THROW(segmenter.Wait(2));
+  EXPECT_NO_THROW(segmenter.Wait(3));
+}
+
+TEST(AsyncSegmenterTest, DestructionWithQueuedFramesDoesNotHang) {
+  auto fake = std::make_shared<FakeSegmenter>();
+  fake->Close();
+  std::thread opener;
+  {
+    AsyncSegmenterOptions options;
+    options.queue_capacity = 4;
+    AsyncSegmenter segmenter(fake, options);
+    for (std::size_t i = 0; i < 4; ++i) segmenter.Submit(i, 0.0, kImage);
+    fake->AwaitStarted(1);
+    opener = std::thread([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      fake->Open();
+    });
+  }
+  opener.join();
+  // Only the frame already running was segmented.
+  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{0}));
+  EXPECT_THROW(AsyncSegmenter(nullptr), Error);
+}
+
+}  // namespace
+}  // namespace drvslam
