@@ -1,0 +1,65 @@
+// Per-frame cost of the tracking front end (ORB extraction + tracking, System::TrackRGBD in
+// sequential mode) on a synthetic static sequence rendered in memory, so disk and PNG decoding
+// are not measured. Reports the mean per frame; stats.json of `drvslam run` gives median/p95.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "drvslam/synth/synth_sequence.h"
+#include "drvslam/system.h"
+
+namespace drvslam {
+namespace {
+
+struct RenderedFrames {
+  Settings settings;
+  std::vector<double> stamps;
+  std::vector<cv::Mat> bgr;
+  std::vector<cv::Mat> depth;
+};
+
+const RenderedFrames& Frames() {
+  static const RenderedFrames frames = [] {
+    synth::SynthOptions options;
+    options.scenario = "static_xyz";
+    options.frames = 90;
+    options.seed = 1;
+    const synth::SynthSequence sequence(options);
+    RenderedFrames rendered;
+    rendered.settings = sequence.MakeSettings();
+    for (int i = 0; i < sequence.FrameCount(); ++i) {
+      const synth::RenderBuffers buffers = sequence.Render(i);
+      rendered.stamps.push_back(sequence.Stamp(i));
+      rendered.bgr.push_back(buffers.bgr);
+      rendered.depth.push_back(buffers.depth);
+    }
+    return rendered;
+  }();
+  return frames;
+}
+
+void BM_TrackStaticSequence(benchmark::State& state) {
+  const RenderedFrames& frames = Frames();
+  Settings settings = frames.settings;
+  settings.orb.n_features = static_cast<int>(state.range(0));
+  SystemOptions options;
+  options.sequential = true;
+  for (auto _ : state) {
+    System system(settings, TrackerOptions{}, options);
+    for (std::size_t i = 0; i < frames.bgr.size(); ++i) {
+      system.TrackRGBD(frames.bgr[i], frames.depth[i], frames.stamps[i]);
+    }
+    benchmark::DoNotOptimize(system.Stats().tracked);
+  }
+  state.SetItemsProcessed(state.iterations() * frames.bgr.size());
+  // Inverted iteration-invariant rate: elapsed / (iterations * frames / 1000) = ms per frame.
+  state.counters["ms_per_frame"] = benchmark::Counter(
+      static_cast<double>(frames.bgr.size()) / 1000.0,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_TrackStaticSequence)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace drvslam
+
+BENCHMARK_MAIN();
