@@ -1,6 +1,7 @@
 // End to end on synthetic sequences: synthesize with the CLI, run SLAM through the library in
 // sequential mode, evaluate against the exact ground truth.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -30,7 +31,8 @@ std::string ReadFile(const fs::path& path) {
 class StaticTrackingTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = fs::temp_directory_path() / "drvslam_integration_static";
+    // One folder per process: CTest runs each test case in its own, in parallel.
+    root_ = fs::temp_directory_path() / ("drvslam_integration_static_" + std::to_string(getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_);
     const std::string command = std::string(DRVSLAM_CLI) +

@@ -2,6 +2,8 @@
 // hand-built vocabulary, and a scratch folder.
 #pragma once
 
+#include <unistd.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -77,7 +79,8 @@ inline BowVocabulary TinyVocabulary() {
 // A fresh, empty folder under the system's temporary directory.
 inline std::string ScratchFolder(const std::string& name) {
   const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / ("drvslam_loop_test_" + name);
+      std::filesystem::temp_directory_path() /
+      ("drvslam_loop_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   return folder.string();

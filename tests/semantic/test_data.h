@@ -2,6 +2,8 @@
 // empty string when the file is absent so the test can skip with a clear message.
 #pragma once
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <string>
 
@@ -20,9 +22,11 @@ inline std::string OpenCvData(const std::string& name) {
   return ExistingOrEmpty(std::string(DRVSLAM_OPENCV_DATA_DIR) + "/" + name);
 }
 
-// A fresh, empty folder under the system temp folder for one test.
+// A fresh, empty folder under the system temp folder for one test. The process id keeps
+// tests that CTest runs in parallel processes out of each other's folders.
 inline std::filesystem::path FreshTempDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("drvslam_" + name);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("drvslam_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
