@@ -5,36 +5,25 @@
 #include <sstream>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/option_check.h"
 
 namespace drvslam {
-namespace {
-
-template <typename T>
-void Require(bool ok, const char* key, T value, const char* rule) {
-  if (ok) return;
-  std::ostringstream message;
-  message << key << " = " << value << " " << rule;
-  throw Error(message.str());
-}
-
-}  // namespace
-
 void CameraOptions::Check() const {
-  Require(std::isfinite(fx) && fx > 0, "Camera.fx", fx, "must be a positive number");
-  Require(std::isfinite(fy) && fy > 0, "Camera.fy", fy, "must be a positive number");
-  Require(std::isfinite(cx), "Camera.cx", cx, "must be a finite number");
-  Require(std::isfinite(cy), "Camera.cy", cy, "must be a finite number");
+  RequireOption(std::isfinite(fx) && fx > 0, "Camera.fx", fx, "must be a positive number");
+  RequireOption(std::isfinite(fy) && fy > 0, "Camera.fy", fy, "must be a positive number");
+  RequireOption(std::isfinite(cx), "Camera.cx", cx, "must be a finite number");
+  RequireOption(std::isfinite(cy), "Camera.cy", cy, "must be a finite number");
   for (const auto& [key, value] : {std::pair<const char*, double>{"Camera.k1", k1},
                                    {"Camera.k2", k2},
                                    {"Camera.p1", p1},
                                    {"Camera.p2", p2},
                                    {"Camera.k3", k3}}) {
-    Require(std::isfinite(value), key, value, "must be a finite number");
+    RequireOption(std::isfinite(value), key, value, "must be a finite number");
   }
-  Require(width > 0 && width <= 16384, "Camera.width", width, "must be in 1..16384");
-  Require(height > 0 && height <= 16384, "Camera.height", height, "must be in 1..16384");
-  Require(std::isfinite(fps) && fps > 0, "Camera.fps", fps, "must be a positive number");
-  Require(std::isfinite(bf) && bf > 0, "Camera.bf", bf, "must be a positive number");
+  RequireOption(width > 0 && width <= 16384, "Camera.width", width, "must be in 1..16384");
+  RequireOption(height > 0 && height <= 16384, "Camera.height", height, "must be in 1..16384");
+  RequireOption(std::isfinite(fps) && fps > 0, "Camera.fps", fps, "must be a positive number");
+  RequireOption(std::isfinite(bf) && bf > 0, "Camera.bf", bf, "must be a positive number");
 }
 
 PinholeCamera::PinholeCamera(const CameraOptions& options) : options_(options) { options_.Check(); }

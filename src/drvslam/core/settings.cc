@@ -8,37 +8,27 @@
 #include <type_traits>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/option_check.h"
 
 namespace drvslam {
-namespace {
-
-template <typename T>
-void Require(bool ok, const char* key, T value, const char* rule) {
-  if (ok) return;
-  std::ostringstream message;
-  message << key << " = " << value << " " << rule;
-  throw Error(message.str());
-}
-
-}  // namespace
-
 void DepthOptions::Check() const {
-  Require(std::isfinite(th_depth) && th_depth > 0, "ThDepth", th_depth,
-          "must be a positive number");
-  Require(std::isfinite(depth_map_factor) && depth_map_factor > 0, "DepthMapFactor",
-          depth_map_factor, "must be a positive number");
+  RequireOption(std::isfinite(th_depth) && th_depth > 0, "ThDepth", th_depth,
+                "must be a positive number");
+  RequireOption(std::isfinite(depth_map_factor) && depth_map_factor > 0, "DepthMapFactor",
+                depth_map_factor, "must be a positive number");
 }
 
 void OrbExtractorOptions::Check() const {
-  Require(n_features > 0 && n_features <= 100000, "ORBextractor.nFeatures", n_features,
-          "must be in 1..100000");
-  Require(std::isfinite(scale_factor) && scale_factor > 1.0 && scale_factor <= 4.0,
-          "ORBextractor.scaleFactor", scale_factor, "must be in (1, 4]");
-  Require(n_levels >= 1 && n_levels <= 32, "ORBextractor.nLevels", n_levels, "must be in 1..32");
-  Require(ini_th_fast >= 1 && ini_th_fast <= 255, "ORBextractor.iniThFAST", ini_th_fast,
-          "must be in 1..255");
-  Require(min_th_fast >= 1 && min_th_fast <= ini_th_fast, "ORBextractor.minThFAST", min_th_fast,
-          "must be in 1..iniThFAST");
+  RequireOption(n_features > 0 && n_features <= 100000, "ORBextractor.nFeatures", n_features,
+                "must be in 1..100000");
+  RequireOption(std::isfinite(scale_factor) && scale_factor > 1.0 && scale_factor <= 4.0,
+                "ORBextractor.scaleFactor", scale_factor, "must be in (1, 4]");
+  RequireOption(n_levels >= 1 && n_levels <= 32, "ORBextractor.nLevels", n_levels,
+                "must be in 1..32");
+  RequireOption(ini_th_fast >= 1 && ini_th_fast <= 255, "ORBextractor.iniThFAST", ini_th_fast,
+                "must be in 1..255");
+  RequireOption(min_th_fast >= 1 && min_th_fast <= ini_th_fast, "ORBextractor.minThFAST",
+                min_th_fast, "must be in 1..iniThFAST");
 }
 
 Settings LoadSettings(const SettingsFile& file) {

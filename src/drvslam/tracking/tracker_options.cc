@@ -3,20 +3,18 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/option_check.h"
 
 namespace drvslam {
 
 void TrackerOptions::Check() const {
-  const auto require = [](bool ok, const std::string& key, int value, const std::string& rule) {
-    if (!ok) throw Error(key + " = " + std::to_string(value) + " " + rule);
-  };
-  require(min_initial_points >= 10, "Tracking.minInitialPoints", min_initial_points,
-          "must be at least 10");
-  require(max_frames_between_keyframes >= 0, "Tracking.maxFramesBetweenKeyframes",
-          max_frames_between_keyframes, "must be >= 0");
-  require(new_points_per_keyframe >= 0, "Tracking.newPointsPerKeyframe", new_points_per_keyframe,
-          "must be >= 0");
-  require(min_inliers >= 6, "Tracking.minInliers", min_inliers, "must be at least 6");
+  RequireOption(min_initial_points >= 10, "Tracking.minInitialPoints", min_initial_points,
+                "must be at least 10");
+  RequireOption(max_frames_between_keyframes >= 0, "Tracking.maxFramesBetweenKeyframes",
+                max_frames_between_keyframes, "must be >= 0");
+  RequireOption(new_points_per_keyframe >= 0, "Tracking.newPointsPerKeyframe",
+                new_points_per_keyframe, "must be >= 0");
+  RequireOption(min_inliers >= 6, "Tracking.minInliers", min_inliers, "must be at least 6");
 }
 
 TrackerOptions LoadTrackerOptions(const SettingsFile& file) {
