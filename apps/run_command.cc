@@ -17,6 +17,7 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   const SystemStats& s = summary.stats;
   const double ratio = s.frames > 0 ? 100.0 * s.tracked / s.frames : 0.0;
   std::printf("settings:    %s\n", summary.settings_source.c_str());
+  std::printf("dynamic:     %s\n", summary.dynamic_setup.c_str());
   std::printf("frames:      %zu%s\n", s.frames, summary.interrupted ? " (interrupted)" : "");
   std::printf("tracked:     %zu (%.1f%%)\n", s.tracked, ratio);
   std::printf("keyframes:   %zu\n", s.keyframes);
@@ -26,6 +27,19 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
                 timing.p95_ms);
   }
   std::printf("fps:         %.1f\n", s.fps);
+  if (s.dynamic) {
+    const DynamicStats& d = *s.dynamic;
+    std::printf("removed:     %zu of %zu features (%zu on objects, %zu unlabelled motion)\n",
+                d.features_removed, d.features_extracted, d.removed_on_objects,
+                d.removed_unlabelled);
+    std::printf("objects:     %zu IDs, moving in %zu of %zu sightings\n", d.ids_issued,
+                d.moving_object_frames, d.object_frames);
+  }
+  if (summary.motion_states) {
+    const Confusion& c = summary.motion_states->shipped;
+    std::printf("states:      precision %.3f, recall %.3f against ground truth\n", c.Precision(),
+                c.Recall());
+  }
   std::printf("wrote:       %s/{CameraTrajectory.txt,KeyFrameTrajectory.txt,stats.json}\n",
               out_dir.c_str());
 }
@@ -42,6 +56,24 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
                     "run every stage in order on one thread (bit-identical results)");
   command->add_option("--max-frames", options->max_frames, "stop after N frames (0 = all)")
       ->check(CLI::NonNegativeNumber);
+  DynamicRunChoice& dynamic = options->dynamic;
+  command
+      ->add_option("--segmenter", dynamic.segmenter,
+                   "yolo|masks|gt|none (default: yolo with --model, else Segmentation.backend, "
+                   "else gt when DATASET has masks/ and instances.txt, else none)")
+      ->check(CLI::IsMember({"yolo", "masks", "gt", "none"}));
+  command->add_option("--model", dynamic.model, "YOLO segmentation ONNX file (implies yolo)");
+  command
+      ->add_option("--dynamic", dynamic.dynamic,
+                   "on|off: dynamic-object handling (default: on when a segmenter is active); "
+                   "off is plain ORB-SLAM2 tracking")
+      ->check(CLI::IsMember({"on", "off"}));
+  command->add_flag("--realtime", dynamic.realtime,
+                    "feed frames at the dataset's rate and track with the newest masks, carried "
+                    "to the frame by optical flow, instead of waiting (ignored with --sequential)");
+  command->add_option("--debug-frames", dynamic.debug_dir,
+                      "write one picture per frame there: kept features green, removed red, "
+                      "moving masks red, static masks green");
   command->callback([options] {
     std::signal(SIGINT, RequestStop);
     ProgressBar bar("tracking");

@@ -2,12 +2,15 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <thread>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/io/tum_dataset.h"
 
 namespace drvslam {
@@ -18,6 +21,10 @@ namespace fs = std::filesystem;
 struct ResolvedSettings {
   Settings settings;
   TrackerOptions tracker;
+  LocalMappingOptions mapping;
+  SegmentationOptions segmentation;
+  bool segmentation_backend_set = false;
+  DynamicOptions dynamic;
   std::string source;
 };
 
@@ -35,12 +42,18 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   SettingsFile file(path);
   resolved.settings = LoadSettings(file);
   resolved.tracker = LoadTrackerOptions(file);
+  resolved.mapping = LoadLocalMappingOptions(file);
+  resolved.segmentation = LoadSegmentationOptions(file);
+  resolved.segmentation_backend_set = file.Has("Segmentation.backend");
+  resolved.dynamic = LoadDynamicOptions(file);
   file.LogUnreadKeys();
   resolved.source = path;
   return resolved;
 }
 
-void WriteOutputs(const System& system, const fs::path& out_dir, RunSummary* summary) {
+void WriteOutputs(System& system, const fs::path& out_dir, RunSummary* summary) {
+  // Local mapping finishes its queue first: the trajectories then include its corrections.
+  system.Shutdown();
   summary->stats = system.Stats();
   summary->camera_trajectory_path = (out_dir / "CameraTrajectory.txt").string();
   WriteTumTrajectory(summary->camera_trajectory_path, system.CameraTrajectory(),
@@ -71,9 +84,20 @@ RunSummary RunSequence(const RunOptions& options,
 
   SystemOptions system_options;
   system_options.sequential = options.sequential;
+  system_options.mapping = resolved.mapping;
+  const DynamicRunSetup dynamic =
+      ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation,
+                        resolved.segmentation_backend_set, resolved.dynamic);
+  system_options.dynamic = dynamic.config;
+  const std::unique_ptr<DatasetMotionTruth> motion_truth =
+      dynamic.config ? DatasetMotionTruth::Open(options.dataset, dynamic.backend) : nullptr;
   System system(resolved.settings, resolved.tracker, system_options);
   RunSummary summary;
   summary.settings_source = resolved.source;
+  summary.dynamic_setup = dynamic.description;
+  // --realtime: frames arrive at the dataset's rate, as from a sensor (never when sequential).
+  const bool paced = options.dynamic.realtime && !options.sequential;
+  const auto started = std::chrono::steady_clock::now();
 
   std::size_t total = dataset.Size();
   if (options.max_frames > 0 && options.max_frames < total) total = options.max_frames;
@@ -84,7 +108,15 @@ RunSummary RunSequence(const RunOptions& options,
         break;
       }
       const RgbdFrame frame = dataset.Read(i);
+      if (paced) {
+        std::this_thread::sleep_until(
+            started + std::chrono::duration<double>(frame.timestamp - dataset.Timestamp(0)));
+      }
       system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
+      if (motion_truth && system.Dynamic()) {
+        motion_truth->Add(system.Dynamic()->LastReport(), frame.bgr.size());
+        summary.motion_states = motion_truth->Scores();
+      }
       if (progress) progress(i + 1, total);
     }
   } catch (const Error&) {
@@ -108,6 +140,24 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["fps"] = s.fps;
   json["interrupted"] = summary.interrupted;
   json["settings"] = summary.settings_source;
+  json["dynamic_setup"] = summary.dynamic_setup;
+  if (s.dynamic) {
+    json["dynamic"] = DynamicStatsJson(*s.dynamic);
+    json["segmentation"] = DynamicSegmentationJson(*s.dynamic);
+  }
+  if (summary.motion_states) {
+    json["dynamic"]["motion_states"] = MotionStateScoresJson(*summary.motion_states);
+  }
+  const LocalMappingStats& m = s.mapping;
+  json["mapping"] = {{"keyframes_processed", m.keyframes_processed},
+                     {"points_from_tracking", m.points_from_tracking},
+                     {"points_triangulated", m.points_triangulated},
+                     {"points_culled", m.points_culled},
+                     {"points_fused", m.points_fused},
+                     {"bundle_adjustments", m.bundle_adjustments},
+                     {"bundle_adjustments_interrupted", m.bundle_adjustments_interrupted},
+                     {"observations_removed", m.observations_removed},
+                     {"keyframes_culled", m.keyframes_culled}};
   for (const auto& [stage, timing] : s.stages) {
     json["stages"][stage] = {{"median_ms", timing.median_ms},
                              {"p95_ms", timing.p95_ms},

@@ -5,8 +5,10 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 
+#include "drvslam/dynamic/dynamic_run_setup.h"
 #include "drvslam/system.h"
 
 namespace drvslam {
@@ -17,6 +19,9 @@ struct RunOptions {
   std::string out_dir;  // created when missing
   bool sequential = false;
   std::size_t max_frames = 0;  // 0 = all
+  // Segmentation and dynamic-object handling (--segmenter, --model, --dynamic, --realtime,
+  // --debug-frames). --realtime also feeds frames at the dataset's rate (not in sequential mode).
+  DynamicRunChoice dynamic;
 };
 
 struct RunSummary {
@@ -24,6 +29,9 @@ struct RunSummary {
   std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
   bool interrupted = false;
   std::string camera_trajectory_path;
+  std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
+  // Motion states scored against the dataset's ground truth (synthetic sequences only).
+  std::optional<MotionStateScores> motion_states;
 };
 
 // progress(done, total) is called after every frame; `stop` (may be null) ends the loop early
@@ -33,7 +41,9 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps, stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings).
+// fps, stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
+// LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
+// motion_states} and segmentation.{SegmentationStatsJson}).
 void WriteStatsJson(const std::string& path, const RunSummary& summary);
 
 }  // namespace drvslam

@@ -1,17 +1,21 @@
 // System: the facade that owns the map and the pipeline threads; the only thing apps need.
-// Feed it RGB-D frames in time order with TrackRGBD; read trajectories and statistics at the
-// end. Today it runs tracking on the caller's thread; segmentation, local mapping, loop closing
-// and dense mapping attach here as they arrive.
+// Feed it RGB-D frames in time order with TrackRGBD; call Shutdown (which waits for local
+// mapping to finish its queue) before reading the final trajectories and statistics. Tracking
+// runs on the caller's thread, local mapping on its own (or after each keyframe on the caller's
+// thread in sequential mode); loop closing and dense mapping attach here as they arrive.
 #pragma once
 
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 
 #include "drvslam/core/settings.h"
 #include "drvslam/core/timing.h"
+#include "drvslam/dynamic/dynamic_front_end.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/map/map.h"
+#include "drvslam/mapping/local_mapper.h"
 #include "drvslam/tracking/frame_factory.h"
 #include "drvslam/tracking/tracker.h"
 
@@ -20,6 +24,10 @@ namespace drvslam {
 struct SystemOptions {
   // Run every stage in order on the caller's thread (deterministic, bit-identical results).
   bool sequential = false;
+  LocalMappingOptions mapping;
+  // Dynamic-object handling (segmentation, motion consistency, feature removal); nullopt runs
+  // plain ORB-SLAM2 tracking. Its `sequential` follows the field above.
+  std::optional<DynamicFrontEndConfig> dynamic;
 };
 
 struct SystemStats {
@@ -28,23 +36,32 @@ struct SystemStats {
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
   int reference_fallbacks = 0;
+  LocalMappingStats mapping;
   std::map<std::string, TimingSummary> stages;  // per-stage ms
   double fps = 0.0;                             // frames per second of wall time in TrackRGBD
+  std::optional<DynamicStats> dynamic;          // when dynamic handling ran
 };
 
 class System {
  public:
   System(const Settings& settings, const TrackerOptions& tracker_options,
          const SystemOptions& options);
-  ~System();
+  ~System();  // calls Shutdown
 
   // bgr: 8-bit BGR of the configured size; depth: CV_32F metres (0 = none).
   TrackingResult TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
 
+  // Lets local mapping finish every queued keyframe and stops its thread; later frames are
+  // tracked without mapping. Idempotent.
+  void Shutdown();
+
+  // Read while mapping still runs, these reflect the map as it is at that moment.
   Trajectory CameraTrajectory() const;
   Trajectory KeyFrameTrajectory() const;
   SystemStats Stats() const;
   const Map& GetMap() const { return map_; }
+  // The dynamic-object stage (null when off); its LastReport() describes the last frame.
+  const DynamicFrontEnd* Dynamic() const { return dynamic_.get(); }
 
  private:
   Settings settings_;
@@ -53,6 +70,9 @@ class System {
   FrameFactory frame_factory_;
   Tracker tracker_;
   StageTimings timings_;
+  std::unique_ptr<DynamicFrontEnd> dynamic_;
+  // Declared last: destroyed (its thread joined) first, while the map and timings still exist.
+  LocalMapper local_mapper_;
   double total_ms_ = 0.0;
 };
 

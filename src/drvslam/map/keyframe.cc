@@ -122,12 +122,20 @@ void KeyFrame::UpdateConnections() {
   }
 
   bool attach_to_tree = false;
+  std::vector<std::shared_ptr<KeyFrame>> dropped;
   {
     std::lock_guard<std::mutex> lock(connections_mutex_);
+    // Neighbours no longer connected forget this keyframe too, so edges stay mirrored and
+    // SetBad, which visits this keyframe's neighbours, reaches every keyframe linking to it.
+    for (const auto& [keyframe_id, connection] : connections_) {
+      if (connections.count(keyframe_id)) continue;
+      if (auto keyframe = connection.keyframe.lock()) dropped.push_back(std::move(keyframe));
+    }
     connections_ = std::move(connections);
     attach_to_tree = first_connection_ && id_ != 0;
     if (attach_to_tree) first_connection_ = false;
   }
+  for (const auto& keyframe : dropped) keyframe->EraseConnection(id_);
   SortConnections();
   if (attach_to_tree) {
     const auto best = BestCovisibles(1);
@@ -224,6 +232,11 @@ void KeyFrame::EraseChild(long keyframe_id) {
   children_.erase(keyframe_id);
 }
 
+SE3 KeyFrame::PoseRelativeToParent() const {
+  std::lock_guard<std::mutex> lock(pose_mutex_);
+  return T_cp_;
+}
+
 bool KeyFrame::IsBad() const {
   std::lock_guard<std::mutex> lock(connections_mutex_);
   return bad_;
@@ -240,7 +253,12 @@ void KeyFrame::SetBad() {
   }
   const auto parent = Parent();
   for (const auto& child : Children()) child->SetParent(parent);
-  if (parent) parent->EraseChild(id_);
+  if (parent) {
+    parent->EraseChild(id_);
+    const SE3 T_cp = Pose() * parent->InversePose();
+    std::lock_guard<std::mutex> lock(pose_mutex_);
+    T_cp_ = T_cp;
+  }
   std::lock_guard<std::mutex> lock(connections_mutex_);
   connections_.clear();
   ordered_connections_.clear();

@@ -65,6 +65,9 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
 
   bool IsBad() const;
   void SetBad();
+  // For a bad keyframe: its pose relative to its parent when it was set bad (T_cp), so poses
+  // stored relative to it can follow the parent's later corrections.
+  SE3 PoseRelativeToParent() const;
 
  private:
   void AddChild(const std::shared_ptr<KeyFrame>& child);
@@ -79,6 +82,7 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   mutable std::mutex pose_mutex_;
   SE3 T_cw_;
   SE3 T_wc_;
+  SE3 T_cp_;  // set by SetBad
 
   mutable std::mutex features_mutex_;
   std::vector<std::shared_ptr<MapPoint>> map_points_;

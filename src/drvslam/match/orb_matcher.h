@@ -1,10 +1,12 @@
 // ORB matching for tracking: by projection of the last frame's or the local map's points into
 // the current frame (windowed search, descriptor distance, ratio and orientation checks), and
-// by brute-force descriptor matching against a keyframe (until a vocabulary exists).
-// Matches are written into Frame::map_points; functions return how many were added.
+// by brute-force descriptor matching against a keyframe (until a vocabulary exists); for local
+// mapping, the epipolar search for triangulation and the fusion of duplicate points.
+// Tracking matches are written into Frame::map_points; functions return how many were added.
 #pragma once
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "drvslam/map/frame.h"
@@ -37,6 +39,26 @@ class OrbMatcher {
   // Matches the keyframe's map points to the frame's keypoints by descriptor alone (nearest
   // neighbour with ratio test), then the orientation check.
   int SearchByDescriptors(const KeyFrame& keyframe, Frame& current, double ratio) const;
+
+  // Local mapping (orb_matcher_mapping.cc).
+  // Candidate pairs (keypoint in kf1, keypoint in kf2) for triangulating new points: both
+  // keypoints hold no map point, the kf2 keypoint lies within sqrt(3.84) sigma of the epipolar
+  // line of the kf1 keypoint (fundamental matrix from the two poses) and, unless the kf1 keypoint
+  // has depth, away from the epipole; descriptors within low_threshold and, against the second
+  // best on the same pyramid level, within nn_ratio. Each kf2 keypoint goes to its best match.
+  // Pairs come in kf1 keypoint order.
+  std::vector<std::pair<std::size_t, std::size_t>> SearchForTriangulation(
+      const KeyFrame& kf1, const KeyFrame& kf2) const;
+
+  // Projects each point into the keyframe (frustum, distance range and viewing-angle checks)
+  // and searches a window of radius_factor * scale(predicted level) pixels for a keypoint within
+  // the chi2 gate (5.991 monocular, 7.8 with depth) and low_threshold in descriptor distance.
+  // When that keypoint already holds a map point, the one with fewer observations is replaced by
+  // the other (appended to *replaced, which may be null); otherwise the point gains the keypoint
+  // as a new observation. Returns the number of points fused or added.
+  int Fuse(const std::shared_ptr<KeyFrame>& keyframe,
+           const std::vector<std::shared_ptr<MapPoint>>& points, double radius_factor,
+           std::vector<std::shared_ptr<MapPoint>>* replaced) const;
 
  private:
   MatcherOptions options_;

@@ -71,15 +71,9 @@ std::shared_ptr<KeyFrame> CreateKeyFrame(Frame& frame, Map& map, int new_points)
   auto keyframe = std::make_shared<KeyFrame>(map.NextKeyFrameId(), frame.Id(), frame.Timestamp(),
                                              frame.FeaturesPtr(), frame.Pose(), inliers);
   map.AddKeyFrame(keyframe);
-  const ScalePyramid& pyramid = frame.Geometry().pyramid;
-  for (std::size_t i = 0; i < inliers.size(); ++i) {
-    if (!inliers[i]) continue;
-    inliers[i]->AddObservation(keyframe, static_cast<int>(i));
-    inliers[i]->ComputeDistinctiveDescriptor();
-    inliers[i]->UpdateNormalAndDepth(pyramid);
-  }
+  // The tracked points gain this keyframe as an observation in local mapping
+  // (ProcessNewKeyFrame); only the new depth points are linked here.
   AddDepthPoints(frame, keyframe, map, new_points, /*all=*/false);
-  keyframe->UpdateConnections();
   frame.reference_keyframe = keyframe;
   return keyframe;
 }

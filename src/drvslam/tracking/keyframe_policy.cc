@@ -2,7 +2,7 @@
 
 namespace drvslam {
 
-bool NeedNewKeyFrame(const KeyFrameEvidence& e) {
+bool WantNewKeyFrame(const KeyFrameEvidence& e) {
   // Many close points could be added while few are tracked: the map is thin here.
   const bool need_close = e.close_tracked < 100 && e.close_untracked > 70;
   const double reference_ratio = e.keyframes_in_map < 2 ? 0.4 : 0.75;
@@ -13,6 +13,10 @@ bool NeedNewKeyFrame(const KeyFrameEvidence& e) {
       (e.tracked_inliers < e.reference_tracked_points * reference_ratio || need_close) &&
       e.tracked_inliers > 15;
   return (timed_out || idle || weak) && fewer_than_reference;
+}
+
+bool NeedNewKeyFrame(const KeyFrameEvidence& e) {
+  return WantNewKeyFrame(e) && (e.mapping_idle || e.queued_keyframes < kMaxQueuedKeyFrames);
 }
 
 }  // namespace drvslam

@@ -9,12 +9,19 @@ struct KeyFrameEvidence {
   int max_frames = 30;  // a keyframe is due after this many frames
   int keyframes_in_map = 0;
   bool mapping_idle = true;          // local mapping can take a keyframe now
+  int queued_keyframes = 0;          // keyframes waiting in local mapping's queue
   int tracked_inliers = 0;           // this frame's inlier matches
   int reference_tracked_points = 0;  // well-observed points of the reference keyframe
   int close_tracked = 0;             // close-depth features with a map point
   int close_untracked = 0;           // close-depth features without one
 };
 
+// Whether the frame would make a useful keyframe (ORB-SLAM2's c1 and c2 conditions).
+bool WantNewKeyFrame(const KeyFrameEvidence& e);
+// Whether to insert one now: wanted, and mapping idle or with fewer than
+// kMaxQueuedKeyFrames waiting (RGB-D keeps inserting while mapping is busy).
 bool NeedNewKeyFrame(const KeyFrameEvidence& e);
+
+inline constexpr int kMaxQueuedKeyFrames = 3;
 
 }  // namespace drvslam

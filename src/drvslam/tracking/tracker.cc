@@ -6,6 +6,7 @@
 
 #include "drvslam/tracking/keyframe_factory.h"
 #include "drvslam/tracking/keyframe_policy.h"
+#include "drvslam/tracking/observation_weight.h"
 
 namespace drvslam {
 namespace {
@@ -60,6 +61,7 @@ TrackingResult Tracker::Track(Frame frame) {
     return result;
   }
 
+  CheckReplacedInLastFrame();
   bool ok = false;
   if (state_ == TrackingState::kOk) {
     if (velocity_ && last_frame_) ok = TrackWithMotionModel();
@@ -217,11 +219,14 @@ bool Tracker::NeedNewKeyFrame() const {
   evidence.frames_since_keyframe = static_cast<int>(current_->Id() - last_keyframe_frame_id_);
   evidence.max_frames = max_frames_between_keyframes_;
   evidence.keyframes_in_map = static_cast<int>(map_.KeyFrameCount());
-  evidence.mapping_idle = true;
+  evidence.mapping_idle = mapping_ == nullptr || mapping_->AcceptsKeyFrames();
+  evidence.queued_keyframes = mapping_ != nullptr ? mapping_->QueuedKeyFrames() : 0;
   evidence.tracked_inliers = matches_inliers_;
-  const int min_observations = evidence.keyframes_in_map <= 2 ? 2 : 3;
+  // ORB-SLAM2's thresholds count a depth observation twice (observation_weight.h): with one
+  // or two keyframes, a point seen once with depth is already well observed.
+  const int min_weight = evidence.keyframes_in_map <= 2 ? 2 : 3;
   evidence.reference_tracked_points =
-      reference_keyframe_ ? reference_keyframe_->TrackedMapPoints(min_observations) : 0;
+      reference_keyframe_ ? WellObservedPoints(*reference_keyframe_, min_weight) : 0;
   const FrameFeatures& features = current_->Features();
   for (std::size_t i = 0; i < current_->Size(); ++i) {
     const float depth = features.Depth(i);
@@ -232,11 +237,25 @@ bool Tracker::NeedNewKeyFrame() const {
       ++evidence.close_untracked;
     }
   }
+  // A keyframe is wanted while mapping is busy: its bundle adjustment gives way.
+  if (mapping_ != nullptr && !evidence.mapping_idle && WantNewKeyFrame(evidence)) {
+    mapping_->InterruptBundleAdjustment();
+  }
   return ::drvslam::NeedNewKeyFrame(evidence);
+}
+
+void Tracker::CheckReplacedInLastFrame() {
+  if (!last_frame_) return;
+  for (auto& point : last_frame_->map_points) {
+    if (!point || !point->IsBad()) continue;
+    auto replacement = point->ReplacedBy();
+    point = replacement && !replacement->IsBad() ? std::move(replacement) : nullptr;
+  }
 }
 
 void Tracker::ResetMap() {
   spdlog::warn("tracking lost: starting a new map");
+  if (mapping_ != nullptr) mapping_->RequestReset();
   map_.Clear();
   reference_keyframe_.reset();
   last_keyframe_.reset();

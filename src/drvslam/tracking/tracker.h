@@ -12,6 +12,7 @@
 #include "drvslam/match/orb_matcher.h"
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/tracking/local_map.h"
+#include "drvslam/tracking/mapping_status.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "drvslam/tracking/trajectory_recorder.h"
 
@@ -34,6 +35,10 @@ class Tracker {
 
   TrackingResult Track(Frame frame);
 
+  // Local mapping, consulted for keyframe decisions and told about map resets (may be null:
+  // then mapping counts as always idle). Not owned; set before the first Track.
+  void SetMappingStatus(MappingStatus* mapping) { mapping_ = mapping; }
+
   TrackingState State() const { return state_; }
   const TrajectoryRecorder& Recorder() const { return recorder_; }
   // The last tracked frame (nullopt before the first one).
@@ -50,9 +55,12 @@ class Tracker {
   // Returns the inlier count.
   int OptimizeCurrentPose();
   bool NeedNewKeyFrame() const;
+  // Local mapping may have replaced (fused) or removed points the last frame still holds.
+  void CheckReplacedInLastFrame();
   void ResetMap();
 
   Map& map_;
+  MappingStatus* mapping_ = nullptr;
   TrackerOptions options_;
   int max_frames_between_keyframes_;
   OrbMatcher matcher_;

@@ -30,13 +30,13 @@ drvslam::Trajectory TrajectoryRecorder::CameraTrajectory() const {
   drvslam::Trajectory trajectory;
   for (const Entry& entry : entries_) {
     if (!entry.tracked) continue;
-    // Walk up the spanning tree past removed keyframes, composing the relative poses.
+    // Walk up the spanning tree past removed keyframes, composing the poses they had relative
+    // to their parents when they were removed: the frame then follows the parent's corrections.
     std::shared_ptr<KeyFrame> reference = entry.reference;
     SE3 T_cr = entry.T_cr;
     while (reference->IsBad() && reference->Parent()) {
-      const auto parent = reference->Parent();
-      T_cr = T_cr * reference->Pose() * parent->InversePose();
-      reference = parent;
+      T_cr = T_cr * reference->PoseRelativeToParent();
+      reference = reference->Parent();
     }
     const SE3 T_cw = T_cr * reference->Pose();
     trajectory.push_back({entry.timestamp, T_cw.Inverse()});

@@ -1,0 +1,173 @@
+// Cost of dynamic-object handling per 640x480 frame: the flow pyramid, motion consistency
+// (Lucas-Kanade of the previous frame's ORB features, RANSAC fundamental matrix and homography,
+// epipolar test), and the whole stage (motion consistency + object IDs, motion states, removal
+// and feature filtering) as System runs it, with the stage split reported as counters. Frames
+// and ground-truth masks come from a short synthetic walking sequence generated at start-up.
+// Single-threaded OpenCV (cv::setNumThreads(1)): per-core cost.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "drvslam/core/settings.h"
+#include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/dynamic/motion_consistency.h"
+#include "drvslam/dynamic/removal_policy.h"
+#include "drvslam/io/tum_dataset.h"
+#include "drvslam/semantic/ground_truth_segmenter.h"
+#include "drvslam/synth/synth_generator.h"
+#include "drvslam/tracking/frame_factory.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace drvslam;
+
+constexpr int kFrames = 8;
+
+// Hands out segmentations computed beforehand, so the bench times the dynamic stage alone.
+class ReplaySegmenter : public Segmenter {
+ public:
+  ReplaySegmenter(std::vector<Segmentation> frames, std::vector<std::string> names)
+      : frames_(std::move(frames)), names_(std::move(names)) {}
+  Segmentation Segment(const cv::Mat&, double timestamp, std::size_t frame_index) override {
+    Segmentation result = frames_[frame_index % frames_.size()];
+    result.timestamp = timestamp;
+    result.frame_index = frame_index;
+    return result;
+  }
+  std::string Name() const override { return "replay"; }
+  const std::vector<std::string>& ClassNames() const override { return names_; }
+
+ private:
+  std::vector<Segmentation> frames_;
+  std::vector<std::string> names_;
+};
+
+struct Data {
+  Settings settings;
+  std::vector<RgbdFrame> frames;
+  std::vector<Segmentation> masks;
+  std::vector<std::string> class_names;
+  std::vector<Frame> built;  // ORB features of each frame
+};
+
+const Data& Sequence() {
+  static const Data data = [] {
+    Data d;
+    const fs::path folder = fs::temp_directory_path() / "drvslam_dynamic_bench";
+    fs::remove_all(folder);
+    synth::SynthOptions options;
+    options.scenario = "walking_xyz";
+    options.frames = kFrames;
+    options.seed = 5;
+    synth::GenerateSequence(options, folder.string());
+    d.settings = LoadSettings((folder / "settings.yaml").string());
+    TumDatasetOptions dataset_options;
+    dataset_options.depth_map_factor = d.settings.depth.depth_map_factor;
+    const TumDataset dataset(folder.string(), dataset_options);
+    GroundTruthSegmenter truth(folder.string());
+    d.class_names = truth.ClassNames();
+    FrameFactory factory(d.settings);
+    for (std::size_t i = 0; i < dataset.Size(); ++i) {
+      d.frames.push_back(dataset.Read(i));
+      d.masks.push_back(truth.Segment(d.frames.back().bgr, d.frames.back().timestamp, i));
+      d.built.push_back(
+          factory.Build(d.frames.back().timestamp, d.frames.back().bgr, d.frames.back().depth));
+    }
+    fs::remove_all(folder);
+    return d;
+  }();
+  return data;
+}
+
+cv::Mat Gray(const cv::Mat& bgr) {
+  cv::Mat gray;
+  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+void BM_FlowPyramid(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const Data& d = Sequence();
+  const DynamicOptions options;
+  const cv::Mat gray = Gray(d.frames[0].bgr);
+  for (auto _ : state) benchmark::DoNotOptimize(BuildFlowImage(gray, options));
+}
+BENCHMARK(BM_FlowPyramid)->Unit(benchmark::kMillisecond);
+
+// Lucas-Kanade + RANSAC F and H + epipolar test, from frame 0's features to frame 1.
+void BM_MotionConsistency(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const Data& d = Sequence();
+  DynamicOptions options;
+  options.max_flow_points = static_cast<int>(state.range(0));
+  options.flow_window = static_cast<int>(state.range(1));
+  options.flow_levels = static_cast<int>(state.range(2));
+  options.flow_scale = state.range(3) / 100.0;
+  const FlowImage prev = BuildFlowImage(Gray(d.frames[0].bgr), options);
+  const FlowImage cur = BuildFlowImage(Gray(d.frames[1].bgr), options);
+  const std::vector<cv::KeyPoint>& keypoints = d.built[0].Features().Keypoints();
+  const std::size_t stride = (keypoints.size() + options.max_flow_points - 1) /
+                             static_cast<std::size_t>(options.max_flow_points);
+  std::vector<cv::Point2f> points;
+  std::vector<int> ids;
+  for (std::size_t i = 0; i < keypoints.size(); i += std::max<std::size_t>(1, stride)) {
+    points.push_back(keypoints[i].pt);
+    ids.push_back(static_cast<int>(i));
+  }
+  const MotionConsistency consistency(options);
+  std::size_t tracks = 0;
+  for (auto _ : state) {
+    const MotionConsistencyResult result = consistency.Run(prev, cur, points, ids, {}, {});
+    tracks = result.tracks.size();
+    benchmark::DoNotOptimize(result.model);
+  }
+  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["tracks"] = static_cast<double>(tracks);
+}
+// Args: points tracked at most, window side, pyramid levels, flow scale (percent). The first is
+// the default (Dynamic.maxFlowPoints 500, flowWindow 11, flowLevels 3, flowScale 1).
+BENCHMARK(BM_MotionConsistency)
+    ->Args({500, 11, 3, 100})
+    ->Args({1000, 21, 3, 100})
+    ->Args({500, 15, 3, 100})
+    ->Args({500, 9, 2, 50})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_DynamicStage(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const Data& d = Sequence();
+  DynamicFrontEndConfig config;
+  config.segmenter = std::make_shared<ReplaySegmenter>(d.masks, d.class_names);
+  config.sequential = true;
+  config.options.unlabelled_motion = state.range(0) != 0;
+  Map map;
+  StageTimings timings;
+  DynamicFrontEnd stage(config, d.settings.orb.n_features, map, &timings);
+  std::size_t i = 0;
+  std::size_t removed = 0;
+  for (auto _ : state) {
+    const std::size_t k = i % d.frames.size();
+    Frame frame = d.built[k];
+    stage.BeginFrame(d.frames[k].timestamp + 1000.0 * (i / d.frames.size()), d.frames[k].bgr);
+    const Frame kept = stage.Filter(std::move(frame), d.frames[k].bgr, d.frames[k].depth);
+    removed += d.built[k].Size() - kept.Size();
+    ++i;
+  }
+  const auto summaries = timings.Summaries();
+  for (const char* name : {"motion_consistency", "removal"}) {
+    const auto found = summaries.find(name);
+    if (found != summaries.end()) state.counters[std::string(name) + "_ms"] = found->second.mean_ms;
+  }
+  state.counters["removed_per_frame"] = i > 0 ? static_cast<double>(removed) / i : 0.0;
+}
+BENCHMARK(BM_DynamicStage)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

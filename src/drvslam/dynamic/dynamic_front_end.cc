@@ -1,0 +1,308 @@
+#include "drvslam/dynamic/dynamic_front_end.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "drvslam/core/error.h"
+#include "drvslam/dynamic/dynamic_drawing.h"
+#include "drvslam/dynamic/removal_policy.h"
+#include "drvslam/semantic/mask_propagator.h"
+
+namespace drvslam {
+namespace {
+
+bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
+  const int x = static_cast<int>(p.x);
+  const int y = static_cast<int>(p.y);
+  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
+  return mask.at<uint8_t>(y, x) != 0;
+}
+
+}  // namespace
+
+DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features, Map& map,
+                                 StageTimings* timings)
+    : config_(std::move(config)),
+      base_features_(base_features),
+      map_(map),
+      timings_(timings),
+      consistency_(config_.options),
+      ids_(config_.options.min_id_matches),
+      classifier_(config_.options) {
+  config_.options.Check();
+  if (config_.sequential) config_.realtime = false;
+  if (config_.segmenter) {
+    config_.segmentation.Check();
+    classes_ = std::make_unique<ClassTable>(config_.segmenter->ClassNames(), config_.segmentation);
+    AsyncSegmenterOptions async;
+    async.sequential = config_.sequential;
+    async.drop_when_busy = config_.realtime;
+    async_ = std::make_unique<AsyncSegmenter>(config_.segmenter, async);
+    MaskPropagatorOptions propagation;
+    propagation.method = config_.segmentation.propagation;
+    masks_ = std::make_unique<MaskSource>(*async_, MaskPropagator(propagation), config_.realtime);
+    stats_.segmenter = config_.segmenter->Name();
+  } else {
+    stats_.segmenter = "none";
+  }
+  stats_.realtime = config_.realtime;
+  if (!config_.debug_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(config_.debug_dir, error);
+    if (error || !std::filesystem::is_directory(config_.debug_dir)) {
+      throw Error(config_.debug_dir + ": cannot create the debug-frames folder");
+    }
+    const std::string csv = (std::filesystem::path(config_.debug_dir) / "objects.csv").string();
+    objects_csv_.open(csv);
+    if (!objects_csv_) throw Error(csv + ": cannot open for writing");
+    objects_csv_ << "frame,timestamp,track_id,class,source_id,potentially_moving,predecessor,"
+                    "ring_features,ring_matched,delta,tracks,moving_tracks,moving_share,"
+                    "reprojected,reprojection_moving,reprojection_share,delta_rule,share_rule,"
+                    "reprojection_rule,combined_rule,moving,share,large_share,model,pose\n";
+  }
+}
+
+DynamicFrontEnd::~DynamicFrontEnd() = default;
+
+void DynamicFrontEnd::Record(const char* stage, double ms) {
+  if (timings_ != nullptr) timings_->Record(stage, ms);
+}
+
+int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr) {
+  if (begun_) throw Error("DynamicFrontEnd: BeginFrame called twice without Filter");
+  begun_ = true;
+  if (async_) async_->Submit(next_index_, timestamp, bgr);
+  report_ = DynamicFrameReport();
+  report_.frame_index = next_index_;
+  report_.timestamp = timestamp;
+  report_.feature_target = BoostedFeatureTarget(base_features_, previous_share_, config_.options);
+  if (report_.feature_target != base_features_) ++stats_.frames_boosted;
+  return report_.feature_target;
+}
+
+Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
+  Segmentation segmentation;
+  if (masks_) {
+    const Stopwatch wait;
+    segmentation = masks_->MasksFor(next_index_, timestamp, bgr);
+    Record("segmentation_wait", wait.ElapsedMs());
+    // The network's own time for this frame (on the segmentation thread, or inline when
+    // sequential), when these are the frame's own masks.
+    if (const auto own = async_->TryGet(next_index_)) Record("segmentation", own->segment_ms);
+  }
+  for (const Instance& instance : segmentation.instances) {
+    if (instance.mask.size() != bgr.size() || instance.mask.type() != CV_8UC1) {
+      throw Error("segmentation of frame " + std::to_string(next_index_) +
+                  ": an instance mask is not CV_8UC1 of the image's size");
+    }
+  }
+  return segmentation;
+}
+
+Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth) {
+  if (!begun_) throw Error("DynamicFrontEnd: Filter called without BeginFrame");
+  begun_ = false;
+  const DynamicOptions& o = config_.options;
+  const cv::Size size = bgr.size();
+  Segmentation segmentation = MasksFor(frame.Timestamp(), bgr);
+  std::vector<Instance> instances = std::move(segmentation.instances);
+  std::vector<bool> potentially_moving(instances.size(), false);
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
+  }
+
+  // Step 1: motion consistency of the previous frame's features.
+  const Stopwatch consistency_watch;
+  cv::Mat gray;
+  if (bgr.type() == CV_8UC3) {
+    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  } else {
+    gray = bgr;
+  }
+  FlowImage flow = BuildFlowImage(gray, o);
+  RemovalPlan all_moving;
+  all_moving.remove = potentially_moving;
+  const cv::Mat exclusion = RemovalMask(instances, all_moving, size, o);
+  MotionConsistencyResult motion;
+  if (previous_ && previous_->flow.size == size) {
+    // Objects need every track they can get (IDs, motion states); the background only enough
+    // for a well-determined model, so it is thinned out evenly.
+    const std::vector<cv::KeyPoint>& keypoints = previous_->features->Keypoints();
+    std::vector<int> on_objects;
+    std::vector<int> background;
+    for (std::size_t i = 0; i < keypoints.size(); ++i) {
+      (OnMask(previous_->exclusion, keypoints[i].pt) ? on_objects : background)
+          .push_back(static_cast<int>(i));
+    }
+    const std::size_t budget = static_cast<std::size_t>(o.max_flow_points);
+    if (on_objects.size() > budget / 2) on_objects.resize(budget / 2);
+    const std::size_t left = budget - on_objects.size();
+    const std::size_t stride = background.size() > left ? (background.size() + left - 1) / left : 1;
+    std::vector<cv::Point2f> points;
+    std::vector<int> ids;
+    for (const int i : on_objects) {
+      points.push_back(keypoints[i].pt);
+      ids.push_back(i);
+    }
+    for (std::size_t k = 0; k < background.size(); k += stride) {
+      points.push_back(keypoints[background[k]].pt);
+      ids.push_back(background[k]);
+    }
+    motion = consistency_.Run(previous_->flow, flow, points, ids, previous_->exclusion, exclusion,
+                              previous_->depth, &frame.Geometry().camera);
+  }
+  Record("motion_consistency", consistency_watch.ElapsedMs());
+
+  const Stopwatch removal_watch;
+  // Step 2: object IDs.
+  std::vector<Instance> no_previous;
+  std::vector<Instance>& previous_instances = previous_ ? previous_->instances : no_previous;
+  const IdAssignment assignment = ids_.Assign(previous_instances, instances, motion.tracks);
+
+  // Step 3: motion states.
+  const std::shared_ptr<const FrameFeatures> all_features = frame.FeaturesPtr();
+  const FrameFeatures& features = *all_features;
+  const FeatureView no_features{&features.Keypoints(), &features.Descriptors()};
+  const FeatureView previous_features = previous_ ? FeatureView{&previous_->features->Keypoints(),
+                                                                &previous_->features->Descriptors()}
+                                                  : no_features;
+  const FeatureView current_features{&features.Keypoints(), &features.Descriptors()};
+  std::vector<ObjectEvidence> objects =
+      classifier_.Classify(previous_instances, instances, potentially_moving, assignment, motion,
+                           previous_features, current_features);
+  const bool model_ok = motion.model != MotionModel::kNone;
+  std::vector<bool> moving(instances.size(), false);
+  for (std::size_t k = 0; k < objects.size(); ++k) moving[k] = objects[k].moving;
+
+  // Map points of objects that started moving go before this frame is tracked.
+  if (o.cull_moving_points) report_.map_points_culled = culler_.CullMoving(objects, map_);
+
+  // Step 4: adaptive removal, plus moving things no detector names.
+  const RemovalPlan plan = PlanRemoval(instances, potentially_moving, moving, model_ok, size, o);
+  const cv::Mat object_mask = RemovalMask(instances, plan, size, o);
+  std::vector<MovingRegion> regions;
+  cv::Mat unlabelled_mask;
+  if (o.unlabelled_motion && model_ok && !depth.empty()) {
+    regions = FindUnlabelledMotion(motion.tracks, exclusion, depth, o);
+    if (!regions.empty()) {
+      unlabelled_mask = cv::Mat::zeros(size, CV_8UC1);
+      PaintRegions(regions, unlabelled_mask);
+    }
+  }
+  const std::vector<cv::KeyPoint>& keypoints = features.Keypoints();
+  std::vector<cv::KeyPoint> kept;
+  std::vector<cv::KeyPoint> removed;
+  std::vector<int> kept_rows;
+  kept.reserve(keypoints.size());
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    if (OnMask(object_mask, keypoints[i].pt)) {
+      ++report_.removed_on_objects;
+      removed.push_back(keypoints[i]);
+    } else if (!unlabelled_mask.empty() && OnMask(unlabelled_mask, keypoints[i].pt)) {
+      ++report_.removed_unlabelled;
+      removed.push_back(keypoints[i]);
+    } else {
+      kept.push_back(keypoints[i]);
+      kept_rows.push_back(static_cast<int>(i));
+    }
+  }
+  Frame filtered = [&] {
+    if (removed.empty()) return std::move(frame);
+    cv::Mat descriptors(static_cast<int>(kept_rows.size()), features.Descriptors().cols,
+                        features.Descriptors().type());
+    for (std::size_t r = 0; r < kept_rows.size(); ++r) {
+      features.Descriptors().row(kept_rows[r]).copyTo(descriptors.row(static_cast<int>(r)));
+    }
+    auto kept_features = std::make_shared<const FrameFeatures>(
+        features.GeometryPtr(), std::vector<cv::KeyPoint>(kept), descriptors, depth);
+    return Frame(frame.Id(), frame.Timestamp(), std::move(kept_features));
+  }();
+  Record("removal", removal_watch.ElapsedMs());
+
+  // Bookkeeping for the next frame, the report and the statistics.
+  report_.model = motion.model;
+  report_.pose_ok = motion.pose_ok;
+  report_.tracks = static_cast<int>(motion.tracks.size());
+  report_.moving_points = motion.moving_points;
+  report_.share = plan.share;
+  report_.large_share = plan.large_share;
+  report_.features_extracted = static_cast<int>(keypoints.size());
+  ++stats_.frames;
+  if (model_ok) ++stats_.frames_with_model;
+  if (motion.model == MotionModel::kHomography) ++stats_.frames_homography;
+  if (plan.large_share) ++stats_.frames_large_share;
+  stats_.features_extracted += keypoints.size();
+  stats_.features_removed += removed.size();
+  stats_.removed_on_objects += report_.removed_on_objects;
+  stats_.removed_unlabelled += report_.removed_unlabelled;
+  stats_.unlabelled_regions += regions.size();
+  stats_.map_points_culled += report_.map_points_culled;
+  for (const ObjectEvidence& object : objects) {
+    if (!object.potentially_moving) continue;
+    ++stats_.object_frames;
+    if (object.moving) ++stats_.moving_object_frames;
+    moving_class_ids_.insert(object.track_id);
+  }
+  stats_.ids_issued = moving_class_ids_.size();
+
+  previous_share_ = plan.share;
+  previous_ = Previous{std::move(flow), all_features, instances, exclusion,
+                       depth.empty() ? cv::Mat() : depth.clone()};
+  report_.instances = std::move(instances);
+  report_.objects = std::move(objects);
+  report_.unlabelled = std::move(regions);
+  if (!config_.debug_dir.empty()) {
+    WriteDebugPicture(bgr, kept, removed);
+    WriteObjectRows();
+  }
+  ++next_index_;
+  return filtered;
+}
+
+void DynamicFrontEnd::AfterTracking(const Frame& tracked) {
+  if (!config_.options.cull_moving_points) return;
+  culler_.Observe(tracked, report_.instances, report_.objects);
+}
+
+void DynamicFrontEnd::WriteDebugPicture(const cv::Mat& bgr, const std::vector<cv::KeyPoint>& kept,
+                                        const std::vector<cv::KeyPoint>& removed) const {
+  const cv::Mat picture =
+      DrawDynamicFrame(bgr, report_.instances, report_.objects, report_.unlabelled, kept, removed);
+  char name[64];
+  std::snprintf(name, sizeof(name), "frame_%06zu.png", report_.frame_index);
+  const std::string path = (std::filesystem::path(config_.debug_dir) / name).string();
+  if (!cv::imwrite(path, picture)) throw Error(path + ": cannot write the debug picture");
+}
+
+void DynamicFrontEnd::WriteObjectRows() {
+  for (std::size_t k = 0; k < report_.objects.size(); ++k) {
+    const ObjectEvidence& e = report_.objects[k];
+    const Instance& instance = report_.instances[k];
+    char row[512];
+    std::snprintf(row, sizeof(row),
+                  "%zu,%.6f,%d,%s,%d,%d,%d,%d,%d,%.4f,%d,%d,%.4f,%d,%d,%.4f,%d,%d,%d,%d,%d,%.4f,%d,"
+                  "%s,%d\n",
+                  report_.frame_index, report_.timestamp, e.track_id,
+                  NormalizeClassName(instance.class_name).c_str(), instance.source_id,
+                  e.potentially_moving, e.predecessor, e.ring_features, e.ring_matched, e.delta,
+                  e.tracks, e.moving_tracks, e.moving_share, e.reprojected_tracks,
+                  e.reprojection_moving_tracks, e.reprojection_share, e.moving_delta_rule,
+                  e.moving_share_rule, e.moving_reprojection_rule, e.moving_combined_rule, e.moving,
+                  report_.share, report_.large_share, MotionModelName(report_.model),
+                  report_.pose_ok);
+    objects_csv_ << row;
+  }
+  objects_csv_.flush();
+}
+
+DynamicStats DynamicFrontEnd::Stats() const {
+  DynamicStats stats = stats_;
+  if (async_) stats.segmentation = async_->Stats();
+  if (masks_) stats.latency = masks_->Latency();
+  return stats;
+}
+
+}  // namespace drvslam

@@ -1,0 +1,153 @@
+// DynamicFrontEnd: the dynamic-object stage between ORB extraction and tracking (DESIGN.md's
+// pipeline). Per frame:
+//   BeginFrame (before extraction): hands the image to the segmentation thread (AsyncSegmenter)
+//     and returns the feature target, raised when people covered much of the previous frame.
+//   Filter (after extraction): takes this frame's masks (waiting for them; with --realtime the
+//     newest ones, carried to this image by optical flow), runs motion consistency, object IDs,
+//     motion states, map-point culling and adaptive removal, and returns the frame with the
+//     static features only.
+//   AfterTracking: files the map points matched on still objects, so they can be culled when
+//     the object starts moving.
+// Stage timings recorded (ms per frame): segmentation (the network's time for the frame),
+// segmentation_wait (how long tracking waited for masks), motion_consistency (flow, scene model,
+// reprojection test), removal (IDs, motion states, culling, removal, filtering).
+// Works without a segmenter too (geometry only: moving points grouped into regions). Used by
+// the tracking thread only; in sequential mode segmentation runs inline and the output is
+// bit-identical from run to run.
+#pragma once
+
+#include <fstream>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "drvslam/core/timing.h"
+#include "drvslam/dynamic/dynamic_options.h"
+#include "drvslam/dynamic/motion_consistency.h"
+#include "drvslam/dynamic/motion_state.h"
+#include "drvslam/dynamic/moving_point_culler.h"
+#include "drvslam/dynamic/object_tracker.h"
+#include "drvslam/dynamic/unlabelled_motion.h"
+#include "drvslam/map/frame.h"
+#include "drvslam/map/map.h"
+#include "drvslam/semantic/async_segmenter.h"
+#include "drvslam/semantic/class_table.h"
+#include "drvslam/semantic/mask_source.h"
+#include "drvslam/semantic/segmentation_options.h"
+#include "drvslam/semantic/segmenter.h"
+
+namespace drvslam {
+
+struct DynamicFrontEndConfig {
+  std::shared_ptr<Segmenter> segmenter;  // null: no masks, geometry only
+  SegmentationOptions segmentation;      // class lists and mask propagation
+  DynamicOptions options;
+  bool sequential = false;  // segment inline, in order (deterministic)
+  bool realtime = false;    // never wait for masks (ignored when sequential)
+  // One picture per frame there, and objects.csv with every object's evidence per frame;
+  // empty: none.
+  std::string debug_dir;
+};
+
+// What the stage decided for one frame.
+struct DynamicFrameReport {
+  std::size_t frame_index = 0;
+  double timestamp = 0.0;
+  std::vector<Instance> instances;      // this frame's masks, with track IDs
+  std::vector<ObjectEvidence> objects;  // one per instance
+  std::vector<MovingRegion> unlabelled;
+  MotionModel model = MotionModel::kNone;
+  bool pose_ok = false;  // the frame-to-frame pose (reprojection test) was fitted
+  int tracks = 0;
+  int moving_points = 0;
+  double share = 0.0;  // image share of potentially-moving objects
+  bool large_share = false;
+  int feature_target = 0;
+  int features_extracted = 0;
+  int removed_on_objects = 0;
+  int removed_unlabelled = 0;
+  int map_points_culled = 0;
+};
+
+struct DynamicStats {
+  std::size_t frames = 0;
+  std::size_t frames_with_model = 0;
+  std::size_t frames_homography = 0;
+  std::size_t frames_large_share = 0;
+  std::size_t frames_boosted = 0;
+  std::size_t features_extracted = 0;
+  std::size_t features_removed = 0;
+  std::size_t removed_on_objects = 0;
+  std::size_t removed_unlabelled = 0;
+  std::size_t object_frames = 0;  // potentially-moving object sightings
+  std::size_t moving_object_frames = 0;
+  std::size_t ids_issued = 0;  // distinct IDs of potentially-moving objects
+  std::size_t unlabelled_regions = 0;
+  std::size_t map_points_culled = 0;
+  std::string segmenter;  // backend name, or "none"
+  bool realtime = false;
+  std::optional<AsyncSegmenterStats> segmentation;
+  std::optional<SegmentationLatencyStats> latency;
+};
+
+class DynamicFrontEnd {
+ public:
+  // base_features: the extractor's configured count. `map` and `timings` (may be null) must
+  // outlive this object. Throws drvslam::Error on bad options or an unwritable debug folder.
+  DynamicFrontEnd(DynamicFrontEndConfig config, int base_features, Map& map, StageTimings* timings);
+  ~DynamicFrontEnd();
+  DynamicFrontEnd(const DynamicFrontEnd&) = delete;
+  DynamicFrontEnd& operator=(const DynamicFrontEnd&) = delete;
+
+  // Starts segmenting `bgr`; returns the feature target for its extraction.
+  int BeginFrame(double timestamp, const cv::Mat& bgr);
+  // `frame` was extracted from `bgr` (the image BeginFrame got) with `depth` (CV_32FC1 metres).
+  // Returns the frame with the removed features taken out (same id and timestamp).
+  Frame Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth);
+  // `tracked`: the frame after successful tracking (its map-point slots filled).
+  void AfterTracking(const Frame& tracked);
+
+  const DynamicFrameReport& LastReport() const { return report_; }
+  DynamicStats Stats() const;
+
+ private:
+  struct Previous {
+    FlowImage flow;
+    std::shared_ptr<const FrameFeatures> features;  // before removal
+    std::vector<Instance> instances;
+    cv::Mat exclusion;  // potentially-moving masks, dilated
+    cv::Mat depth;      // CV_32FC1 metres (may be empty)
+  };
+
+  Segmentation MasksFor(double timestamp, const cv::Mat& bgr);
+  void Record(const char* stage, double ms);
+  void WriteDebugPicture(const cv::Mat& bgr, const std::vector<cv::KeyPoint>& kept,
+                         const std::vector<cv::KeyPoint>& removed) const;
+  void WriteObjectRows();
+
+  DynamicFrontEndConfig config_;
+  int base_features_;
+  Map& map_;
+  StageTimings* timings_;
+  std::unique_ptr<ClassTable> classes_;
+  std::unique_ptr<AsyncSegmenter> async_;
+  std::unique_ptr<MaskSource> masks_;
+  MotionConsistency consistency_;
+  ObjectIdTracker ids_;
+  MotionStateClassifier classifier_;
+  MovingPointCuller culler_;
+
+  std::size_t next_index_ = 0;
+  bool begun_ = false;
+  double previous_share_ = 0.0;
+  std::optional<Previous> previous_;
+  std::set<int> moving_class_ids_;
+  std::ofstream objects_csv_;
+  DynamicFrameReport report_;
+  DynamicStats stats_;
+};
+
+}  // namespace drvslam

@@ -1,0 +1,36 @@
+#include "drvslam/dynamic/dynamic_stats_json.h"
+
+#include "drvslam/semantic/segmentation_stats_json.h"
+
+namespace drvslam {
+
+nlohmann::json DynamicStatsJson(const DynamicStats& s) {
+  const double per_frame = s.frames > 0 ? static_cast<double>(s.features_removed) / s.frames : 0.0;
+  return {{"segmenter", s.segmenter},
+          {"realtime", s.realtime},
+          {"frames", s.frames},
+          {"frames_with_model", s.frames_with_model},
+          {"frames_homography", s.frames_homography},
+          {"frames_large_share", s.frames_large_share},
+          {"frames_boosted", s.frames_boosted},
+          {"features",
+           {{"extracted", s.features_extracted},
+            {"removed", s.features_removed},
+            {"removed_on_objects", s.removed_on_objects},
+            {"removed_unlabelled", s.removed_unlabelled},
+            {"removed_per_frame", per_frame}}},
+          {"objects",
+           {{"ids", s.ids_issued},
+            {"sightings", s.object_frames},
+            {"moving_sightings", s.moving_object_frames}}},
+          {"unlabelled_regions", s.unlabelled_regions},
+          {"map_points_culled", s.map_points_culled}};
+}
+
+nlohmann::json DynamicSegmentationJson(const DynamicStats& stats) {
+  if (!stats.segmentation) return nullptr;
+  return SegmentationStatsJson(stats.segmenter, *stats.segmentation,
+                               stats.latency ? &*stats.latency : nullptr);
+}
+
+}  // namespace drvslam

@@ -1,0 +1,116 @@
+#include "drvslam/dynamic/unlabelled_motion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+
+#include "drvslam/core/error.h"
+
+namespace drvslam {
+namespace {
+
+struct MovingPoint {
+  cv::Point2f p;
+  float depth;
+};
+
+int Find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+}  // namespace
+
+std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tracks,
+                                               const cv::Mat& labelled, const cv::Mat& depth,
+                                               const DynamicOptions& options) {
+  if (depth.empty() || depth.type() != CV_32FC1) {
+    throw Error("FindUnlabelledMotion: depth must be CV_32FC1 metres");
+  }
+  if (!labelled.empty() && (labelled.type() != CV_8UC1 || labelled.size() != depth.size())) {
+    throw Error("FindUnlabelledMotion: the labelled mask must be CV_8UC1 of the depth's size");
+  }
+  std::vector<MovingPoint> points;
+  for (const FlowTrack& track : tracks) {
+    if (!track.MovingBest()) continue;
+    const int x = static_cast<int>(track.cur.x);
+    const int y = static_cast<int>(track.cur.y);
+    if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) continue;
+    if (!labelled.empty() && labelled.at<uint8_t>(y, x) != 0) continue;
+    const float z = depth.at<float>(y, x);
+    if (!(z > 0.0f) || !std::isfinite(z)) continue;
+    points.push_back({track.cur, z});
+  }
+  std::vector<MovingRegion> regions;
+  if (static_cast<int>(points.size()) < options.min_cluster_points) return regions;
+
+  const int n = static_cast<int>(points.size());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const double radius2 = options.cluster_radius * options.cluster_radius;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const double dx = points[i].p.x - points[j].p.x;
+      const double dy = points[i].p.y - points[j].p.y;
+      if (dx * dx + dy * dy > radius2) continue;
+      if (std::abs(points[i].depth - points[j].depth) > options.cluster_depth_step) continue;
+      const int a = Find(parent, i);
+      const int b = Find(parent, j);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::vector<std::vector<int>> clusters(n);
+  for (int i = 0; i < n; ++i) clusters[Find(parent, i)].push_back(i);
+
+  const cv::Rect whole(0, 0, depth.cols, depth.rows);
+  const int margin = static_cast<int>(std::ceil(options.region_margin));
+  const float step = static_cast<float>(options.region_depth_step);
+  for (const std::vector<int>& cluster : clusters) {
+    if (static_cast<int>(cluster.size()) < options.min_cluster_points) continue;
+    std::vector<cv::Point> pixels;
+    for (const int i : cluster) {
+      pixels.emplace_back(static_cast<int>(points[i].p.x), static_cast<int>(points[i].p.y));
+    }
+    const cv::Rect spread = cv::boundingRect(pixels);
+    const cv::Rect box = cv::Rect(spread.x - margin, spread.y - margin, spread.width + 2 * margin,
+                                  spread.height + 2 * margin) &
+                         whole;
+    if (box.area() <= 0) continue;
+    // Grow over depth-connected pixels from every point of the group, inside the box only.
+    cv::Mat local = depth(box).clone();
+    cv::Mat fill = cv::Mat::zeros(box.height + 2, box.width + 2, CV_8UC1);
+    const int flags = 4 | cv::FLOODFILL_MASK_ONLY | (255 << 8);
+    for (const cv::Point& pixel : pixels) {
+      const cv::Point seed = pixel - box.tl();
+      if (fill.at<uint8_t>(seed.y + 1, seed.x + 1) != 0) continue;
+      cv::floodFill(local, fill, seed, cv::Scalar(), nullptr, cv::Scalar(step), cv::Scalar(step),
+                    flags);
+    }
+    MovingRegion region;
+    region.box = box;
+    region.mask = fill(cv::Rect(1, 1, box.width, box.height)).clone();
+    if (!labelled.empty()) {
+      cv::Mat outside;
+      cv::bitwise_not(labelled(box), outside);
+      cv::bitwise_and(region.mask, outside, region.mask);
+    }
+    region.points = static_cast<int>(cluster.size());
+    regions.push_back(std::move(region));
+  }
+  return regions;
+}
+
+void PaintRegions(const std::vector<MovingRegion>& regions, cv::Mat& mask) {
+  for (const MovingRegion& region : regions) {
+    const cv::Rect box = region.box & cv::Rect(0, 0, mask.cols, mask.rows);
+    if (box != region.box) continue;
+    cv::Mat roi = mask(box);
+    cv::bitwise_or(roi, region.mask, roi);
+  }
+}
+
+}  // namespace drvslam

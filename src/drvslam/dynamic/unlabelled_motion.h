@@ -1,0 +1,34 @@
+// Unlabelled motion: moving things no detector names (a pushed box, a door, a ball). Moving
+// points (from MotionConsistency: by the reprojection test where known, else the epipolar one) that
+// lie outside every potentially-moving mask are grouped: two join when they are close in the image
+// and at similar depth. A group with enough points is one moving thing; its region is grown from
+// the points over depth-connected pixels (neighbours whose depth differs by less than a step)
+// within a margin around them, and every feature there is removed. Isolated moving points are flow
+// noise and are left alone.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "drvslam/dynamic/dynamic_options.h"
+#include "drvslam/dynamic/motion_consistency.h"
+
+namespace drvslam {
+
+struct MovingRegion {
+  cv::Rect box;    // the region's extent in the image
+  cv::Mat mask;    // CV_8UC1 of box's size, 255 inside the region
+  int points = 0;  // moving points that formed it
+};
+
+// tracks: MotionConsistency's output. labelled: empty or CV_8UC1 of the depth's size (nonzero =
+// already handled by segmentation; points there are skipped). depth: CV_32FC1 metres (0 = no
+// depth); points without depth are skipped. Throws drvslam::Error on inconsistent sizes/types.
+std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tracks,
+                                               const cv::Mat& labelled, const cv::Mat& depth,
+                                               const DynamicOptions& options);
+
+// Paints the regions into `mask` (CV_8UC1 of the image size) with 255.
+void PaintRegions(const std::vector<MovingRegion>& regions, cv::Mat& mask);
+
+}  // namespace drvslam

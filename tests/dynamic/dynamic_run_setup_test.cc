@@ -1,0 +1,128 @@
+// How `drvslam run` picks its segmenter and dynamic handling: defaults from the dataset, the
+// command line over the settings file, and errors that name the option.
+#include "drvslam/dynamic/dynamic_run_setup.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "drvslam/core/error.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+class DynamicRunSetupTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ =
+        fs::temp_directory_path() /
+        ("drvslam_run_setup_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "plain");
+    fs::create_directories(root_ / "synthetic" / "masks");
+    std::ofstream(root_ / "synthetic" / "instances.txt")
+        << "# drvslam synthetic instances\ninstance 1 person 0\nframe 1.000000 1\n";
+    std::ofstream(root_ / "synthetic" / "rgb.txt") << "1.000000 rgb/1.000000.png\n";
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  DynamicRunSetup Resolve(const DynamicRunChoice& choice, const std::string& dataset,
+                          bool backend_in_settings = false,
+                          SegmenterBackend settings_backend = SegmenterBackend::kNone) {
+    SegmentationOptions segmentation;
+    segmentation.backend = settings_backend;
+    return ResolveDynamicRun(choice, (root_ / dataset).string(), segmentation, backend_in_settings,
+                             DynamicOptions());
+  }
+
+  fs::path root_;
+};
+
+TEST_F(DynamicRunSetupTest, DefaultsFollowTheDataset) {
+  const DynamicRunSetup synthetic = Resolve({}, "synthetic");
+  EXPECT_EQ(synthetic.backend, SegmenterBackend::kGroundTruth);
+  ASSERT_TRUE(synthetic.config.has_value());
+  ASSERT_NE(synthetic.config->segmenter, nullptr);
+  EXPECT_EQ(synthetic.description, "segmenter gt, dynamic on");
+
+  const DynamicRunSetup plain = Resolve({}, "plain");
+  EXPECT_EQ(plain.backend, SegmenterBackend::kNone);
+  EXPECT_FALSE(plain.config.has_value());
+  EXPECT_EQ(plain.description, "segmenter none, dynamic off");
+}
+
+TEST_F(DynamicRunSetupTest, TheCommandLineWins) {
+  DynamicRunChoice off;
+  off.dynamic = "off";
+  const DynamicRunSetup baseline = Resolve(off, "synthetic");
+  EXPECT_FALSE(baseline.config.has_value());
+  EXPECT_EQ(baseline.description, "segmenter gt, dynamic off");
+
+  // Geometry only: no segmenter, dynamic handling on.
+  DynamicRunChoice geometry;
+  geometry.segmenter = "none";
+  geometry.dynamic = "on";
+  geometry.realtime = true;
+  const DynamicRunSetup only_geometry = Resolve(geometry, "synthetic");
+  ASSERT_TRUE(only_geometry.config.has_value());
+  EXPECT_EQ(only_geometry.config->segmenter, nullptr);
+  EXPECT_TRUE(only_geometry.config->realtime);
+  EXPECT_EQ(only_geometry.description, "segmenter none, dynamic on, realtime");
+
+  // A settings file's backend is used when the command line names none.
+  const DynamicRunSetup from_settings = Resolve({}, "synthetic", true, SegmenterBackend::kNone);
+  EXPECT_EQ(from_settings.backend, SegmenterBackend::kNone);
+  EXPECT_FALSE(from_settings.config.has_value());
+}
+
+TEST_F(DynamicRunSetupTest, AModelMeansYolo) {
+  DynamicRunChoice choice;
+  choice.model = (root_ / "missing.onnx").string();
+  try {
+    Resolve(choice, "synthetic");
+    FAIL() << "a missing model must be an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.onnx"), std::string::npos) << e.what();
+  }
+  // Off: the model is never opened.
+  choice.dynamic = "off";
+  EXPECT_EQ(Resolve(choice, "synthetic").backend, SegmenterBackend::kYolo);
+}
+
+TEST_F(DynamicRunSetupTest, BadChoicesNameTheOption) {
+  const auto expect_error = [&](const DynamicRunChoice& choice, const std::string& option) {
+    try {
+      Resolve(choice, "synthetic");
+      FAIL() << "expected an error naming " << option;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(option), std::string::npos) << e.what();
+    }
+  };
+  DynamicRunChoice choice;
+  choice.segmenter = "sam";
+  expect_error(choice, "--segmenter");
+  choice = {};
+  choice.segmenter = "yolo";
+  expect_error(choice, "--model");
+  choice = {};
+  choice.dynamic = "sometimes";
+  expect_error(choice, "--dynamic");
+  choice = {};
+  choice.dynamic = "off";
+  choice.debug_dir = (root_ / "pictures").string();
+  expect_error(choice, "--debug-frames");
+}
+
+TEST_F(DynamicRunSetupTest, MotionTruthNeedsInstances) {
+  EXPECT_EQ(DatasetMotionTruth::Open((root_ / "plain").string(), SegmenterBackend::kNone), nullptr);
+  EXPECT_NE(
+      DatasetMotionTruth::Open((root_ / "synthetic").string(), SegmenterBackend::kGroundTruth),
+      nullptr);
+}
+
+}  // namespace
+}  // namespace drvslam

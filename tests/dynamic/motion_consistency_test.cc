@@ -1,0 +1,190 @@
+// Motion consistency: a static scene with parallax keeps its points, a planted moving patch is
+// found, the homography fallback takes over when the camera only turns, and runs repeat exactly.
+#include "drvslam/dynamic/motion_consistency.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "drvslam/core/error.h"
+#include "plane_scene.h"
+
+namespace drvslam {
+namespace {
+
+using test::Camera;
+using test::Plane;
+using test::Render;
+
+// A small moving patch at 2.5 m, a box at 2 m and a background at 3 m (left) and 5 m
+// (right), so that a translating camera sees parallax.
+std::vector<Plane> Scene() {
+  return {{3.0, {-4, -3, 4, 6}, 1, 0.05},
+          {2.0, {-0.9, -0.2, 0.6, 0.6}, 2, 0.04},
+          {2.5, {0.3, -0.3, 0.35, 0.35}, 3, 0.03},
+          {5.0, {0, -4, 5, 8}, 4, 0.08}};
+}
+
+struct Pair {
+  test::Rendered prev, cur;
+  std::vector<cv::Point2f> points;
+  std::vector<int> ids;
+};
+
+Pair MakePair(const Camera& prev_camera, const Camera& cur_camera, const cv::Point2d& patch_shift) {
+  Pair pair;
+  const std::vector<Plane> scene = Scene();
+  pair.prev = Render(scene, prev_camera);
+  pair.cur = Render(scene, cur_camera, {{0, 0}, {0, 0}, patch_shift, {0, 0}});
+  cv::goodFeaturesToTrack(pair.prev.gray, pair.points, 800, 0.01, 7);
+  for (std::size_t i = 0; i < pair.points.size(); ++i) pair.ids.push_back(static_cast<int>(i));
+  return pair;
+}
+
+struct Counts {
+  int patch = 0, patch_moving = 0, rest = 0, rest_moving = 0;
+};
+
+Counts CountByLabel(const MotionConsistencyResult& result, const Pair& pair) {
+  Counts counts;
+  for (const FlowTrack& track : result.tracks) {
+    const int label = pair.prev.labels.at<int>(cvRound(track.prev.y), cvRound(track.prev.x));
+    // Skip points on the patch's outline: half object, half background.
+    cv::Mat window =
+        pair.prev.labels(cv::Rect(cvRound(track.prev.x) - 3, cvRound(track.prev.y) - 3, 7, 7) &
+                         cv::Rect(0, 0, pair.prev.labels.cols, pair.prev.labels.rows));
+    double low, high;
+    cv::minMaxLoc(window, &low, &high);
+    if (low != high) continue;
+    if (label == 3) {
+      ++counts.patch;
+      counts.patch_moving += track.moving;
+    } else {
+      ++counts.rest;
+      counts.rest_moving += track.moving;
+    }
+  }
+  return counts;
+}
+
+TEST(MotionConsistencyTest, FindsAPlantedMovingClusterAndKeepsTheStaticScene) {
+  Camera prev_camera;
+  Camera cur_camera;
+  cur_camera.center = {0.06, 0.01, 0.02};  // translation: parallax between 2 m and 4 m
+  const Pair pair = MakePair(prev_camera, cur_camera, {0.0, 0.05});  // the patch drops 5 cm
+  DynamicOptions options;
+  const MotionConsistency consistency(options);
+  const MotionConsistencyResult result = consistency.Run(
+      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
+      pair.ids, cv::Mat(), cv::Mat());
+  EXPECT_EQ(result.model, MotionModel::kFundamental);
+  const Counts counts = CountByLabel(result, pair);
+  ASSERT_GE(counts.patch, 15);
+  ASSERT_GE(counts.rest, 200);
+  EXPECT_GE(counts.patch_moving, 0.9 * counts.patch)
+      << counts.patch_moving << " of " << counts.patch;
+  EXPECT_LE(counts.rest_moving, 0.02 * counts.rest) << counts.rest_moving << " of " << counts.rest;
+}
+
+TEST(MotionConsistencyTest, ExcludedPairsDoNotFitTheModelButAreTested) {
+  Camera prev_camera;
+  Camera cur_camera;
+  cur_camera.center = {0.06, 0.01, 0.02};
+  const Pair pair = MakePair(prev_camera, cur_camera, {0.0, 0.05});
+  cv::Mat exclusion;
+  cv::compare(pair.prev.labels, 3, exclusion, cv::CMP_EQ);
+  DynamicOptions options;
+  const MotionConsistency consistency(options);
+  const MotionConsistencyResult result = consistency.Run(
+      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
+      pair.ids, exclusion, cv::Mat());
+  int patch_model_pairs = 0;
+  int patch_moving = 0;
+  for (const FlowTrack& track : result.tracks) {
+    if (exclusion.at<uint8_t>(cvRound(track.prev.y), cvRound(track.prev.x)) == 0) continue;
+    patch_model_pairs += track.model_pair;
+    patch_moving += track.moving;
+  }
+  EXPECT_EQ(patch_model_pairs, 0);
+  EXPECT_GT(patch_moving, 10);
+}
+
+TEST(MotionConsistencyTest, PureRotationFallsBackToTheHomography) {
+  Camera prev_camera;
+  Camera cur_camera;
+  cur_camera.yaw = 0.01;  // no translation: every static point obeys one homography
+  const Pair pair = MakePair(prev_camera, cur_camera, {0.04, 0.0});
+  DynamicOptions options;
+  const MotionConsistency consistency(options);
+  const MotionConsistencyResult result = consistency.Run(
+      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
+      pair.ids, cv::Mat(), cv::Mat());
+  EXPECT_EQ(result.model, MotionModel::kHomography);
+  const Counts counts = CountByLabel(result, pair);
+  EXPECT_GE(counts.patch_moving, 0.9 * counts.patch);
+  EXPECT_LE(counts.rest_moving, 0.02 * counts.rest);
+
+  // With the fallback off, the fundamental matrix is fitted anyway.
+  options.min_parallax_share = 0.0;
+  const MotionConsistencyResult plain = MotionConsistency(options).Run(
+      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
+      pair.ids, cv::Mat(), cv::Mat());
+  EXPECT_EQ(plain.model, MotionModel::kFundamental);
+}
+
+TEST(MotionConsistencyTest, RepeatedRunsGiveIdenticalResults) {
+  Camera prev_camera;
+  Camera cur_camera;
+  cur_camera.center = {0.05, 0.0, 0.03};
+  const Pair pair = MakePair(prev_camera, cur_camera, {0.03, 0.03});
+  DynamicOptions options;
+  const MotionConsistency consistency(options);
+  const FlowImage a = BuildFlowImage(pair.prev.gray, options);
+  const FlowImage b = BuildFlowImage(pair.cur.gray, options);
+  const MotionConsistencyResult first = consistency.Run(a, b, pair.points, pair.ids, {}, {});
+  const MotionConsistencyResult second = consistency.Run(a, b, pair.points, pair.ids, {}, {});
+  ASSERT_EQ(first.tracks.size(), second.tracks.size());
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(first.fundamental(r, c), second.fundamental(r, c));
+  }
+  for (std::size_t i = 0; i < first.tracks.size(); ++i) {
+    EXPECT_EQ(first.tracks[i].cur, second.tracks[i].cur);
+    EXPECT_EQ(first.tracks[i].moving, second.tracks[i].moving);
+  }
+}
+
+TEST(MotionConsistencyTest, EpipolarDistanceOfAKnownLine) {
+  // Pure x translation: F = [t]x with t = (1, 0, 0) gives horizontal epipolar lines y' = y.
+  const cv::Matx33d f(0, 0, 0, 0, 0, -1, 0, 1, 0);
+  EXPECT_NEAR(MotionConsistency::EpipolarDistance(f, {10, 20}, {50, 20}), 0.0, 1e-12);
+  EXPECT_NEAR(MotionConsistency::EpipolarDistance(f, {10, 20}, {50, 23}), 3.0, 1e-12);
+  EXPECT_NEAR(MotionConsistency::TransferError(cv::Matx33d::eye(), {1, 2}, {4, 6}), 5.0, 1e-12);
+}
+
+TEST(MotionConsistencyTest, TooFewStaticPairsGiveNoModel) {
+  Camera camera;
+  const Pair pair = MakePair(camera, camera, {0, 0});
+  DynamicOptions options;
+  const std::vector<cv::Point2f> few(pair.points.begin(), pair.points.begin() + 10);
+  const std::vector<int> ids(pair.ids.begin(), pair.ids.begin() + 10);
+  const MotionConsistencyResult result =
+      MotionConsistency(options).Run(BuildFlowImage(pair.prev.gray, options),
+                                     BuildFlowImage(pair.cur.gray, options), few, ids, {}, {});
+  EXPECT_EQ(result.model, MotionModel::kNone);
+  EXPECT_EQ(result.moving_points, 0);
+}
+
+TEST(MotionConsistencyTest, BadInputsAreErrors) {
+  DynamicOptions options;
+  const MotionConsistency consistency(options);
+  const FlowImage a = BuildFlowImage(cv::Mat(100, 100, CV_8UC1, cv::Scalar(7)), options);
+  const FlowImage b = BuildFlowImage(cv::Mat(120, 100, CV_8UC1, cv::Scalar(7)), options);
+  EXPECT_THROW(consistency.Run(a, b, {}, {}, {}, {}), Error);
+  EXPECT_THROW(consistency.Run(a, a, {{1, 1}}, {}, {}, {}), Error);
+  EXPECT_THROW(consistency.Run(a, a, {}, {}, cv::Mat(5, 5, CV_8UC1), {}), Error);
+  EXPECT_THROW(BuildFlowImage(cv::Mat(), options), Error);
+  EXPECT_THROW(BuildFlowImage(cv::Mat(10, 10, CV_32FC1), options), Error);
+}
+
+}  // namespace
+}  // namespace drvslam
