@@ -1,19 +1,16 @@
 // End to end with dynamic-object handling: a synthetic walking sequence (made with the CLI), run
 // in sequential mode with the ground-truth segmenter, with dynamic handling on and off.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "drvslam/core/error.h"
 #include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/sequence_runner.h"
+#include "synthesized_sequence.h"
 
 namespace drvslam {
 namespace {
@@ -22,25 +19,13 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kFrames = 150;
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 class DynamicIntegrationTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // One folder per process: CTest runs each test case in its own, in parallel.
-    root_ = fs::temp_directory_path() / ("drvslam_integration_dynamic_" + std::to_string(getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-    const std::string command = std::string(DRVSLAM_CLI) +
-                                " --log-level warn synth --scenario walking_xyz --frames " +
-                                std::to_string(kFrames) + " --seed 1 --out " +
-                                (root_ / "seq").string() + " > " + (root_ / "synth.log").string();
-    ASSERT_EQ(std::system(command.c_str()), 0) << ReadFile(root_ / "synth.log");
+    root_ = test::FreshTempFolder("drvslam_integration_dynamic");
+    const std::string failure = test::SynthesizeSequence(
+        root_, "--scenario walking_xyz --frames " + std::to_string(kFrames) + " --seed 1");
+    ASSERT_TRUE(failure.empty()) << failure;
   }
   static void TearDownTestSuite() { fs::remove_all(root_); }
 
@@ -85,7 +70,7 @@ TEST_F(DynamicIntegrationTest, DynamicHandlingTracksEveryFrameAndBeatsPlainTrack
   EXPECT_GT(on.motion_states->shipped.Precision(), 0.9);
   EXPECT_GT(on.motion_states->shipped.Recall(), 0.6);
 
-  const nlohmann::json stats = nlohmann::json::parse(ReadFile(root_ / "on" / "stats.json"));
+  const nlohmann::json stats = nlohmann::json::parse(test::ReadFile(root_ / "on" / "stats.json"));
   EXPECT_EQ(stats["dynamic_setup"], "segmenter gt, dynamic on");
   EXPECT_GT(stats["dynamic"]["features"]["removed"].get<double>(), 0.0);
   EXPECT_TRUE(stats["dynamic"]["motion_states"].contains("shipped"));
@@ -96,8 +81,8 @@ TEST_F(DynamicIntegrationTest, DynamicHandlingTracksEveryFrameAndBeatsPlainTrack
 
   // Sequential mode is bit-identical with dynamic handling too.
   Run("on_again", "");
-  EXPECT_EQ(ReadFile(root_ / "on" / "CameraTrajectory.txt"),
-            ReadFile(root_ / "on_again" / "CameraTrajectory.txt"));
+  EXPECT_EQ(test::ReadFile(root_ / "on" / "CameraTrajectory.txt"),
+            test::ReadFile(root_ / "on_again" / "CameraTrajectory.txt"));
 }
 
 TEST_F(DynamicIntegrationTest, BadChoicesAreErrors) {

@@ -2,12 +2,8 @@
 // through the library sequentially (mapping after each keyframe on the caller's thread) and
 // threaded (mapping on its own thread), evaluate against the exact ground truth.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "drvslam/core/settings.h"
@@ -17,32 +13,20 @@
 #include "drvslam/mapping/map_consistency.h"
 #include "drvslam/sequence_runner.h"
 #include "drvslam/system.h"
+#include "synthesized_sequence.h"
 
 namespace drvslam {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 class LocalMappingTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // One folder per process: CTest runs each test case in its own, in parallel.
-    root_ = fs::temp_directory_path() /
-            ("drvslam_integration_local_mapping_" + std::to_string(getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-    const std::string command = std::string(DRVSLAM_CLI) +
-                                " --log-level warn synth --scenario static_xyz --frames 90 "
-                                "--seed 3 --out " +
-                                (root_ / "seq").string() + " > " + (root_ / "synth.log").string();
-    ASSERT_EQ(std::system(command.c_str()), 0) << ReadFile(root_ / "synth.log");
+    root_ = test::FreshTempFolder("drvslam_integration_local_mapping");
+    const std::string failure =
+        test::SynthesizeSequence(root_, "--scenario static_xyz --frames 90 --seed 3");
+    ASSERT_TRUE(failure.empty()) << failure;
   }
   static void TearDownTestSuite() { fs::remove_all(root_); }
 
@@ -80,7 +64,7 @@ TEST_F(LocalMappingTest, SequentialMappingTracksEveryFrameAccurately) {
   EXPECT_GT(mapping.points_culled, 0);
   const double rmse = AteRmse(summary);
   EXPECT_LT(rmse, 0.007) << "ATE RMSE " << rmse << " m";
-  const std::string stats = ReadFile(root_ / "seq1" / "stats.json");
+  const std::string stats = test::ReadFile(root_ / "seq1" / "stats.json");
   EXPECT_NE(stats.find("\"local_ba\""), std::string::npos) << stats;
   EXPECT_NE(stats.find("\"bundle_adjustments\""), std::string::npos) << stats;
 }
@@ -88,11 +72,11 @@ TEST_F(LocalMappingTest, SequentialMappingTracksEveryFrameAccurately) {
 TEST_F(LocalMappingTest, SequentialMappingIsBitIdentical) {
   Run("a", true);
   Run("b", true);
-  const std::string a = ReadFile(root_ / "a" / "CameraTrajectory.txt");
+  const std::string a = test::ReadFile(root_ / "a" / "CameraTrajectory.txt");
   ASSERT_FALSE(a.empty());
-  EXPECT_EQ(a, ReadFile(root_ / "b" / "CameraTrajectory.txt"));
-  EXPECT_EQ(ReadFile(root_ / "a" / "KeyFrameTrajectory.txt"),
-            ReadFile(root_ / "b" / "KeyFrameTrajectory.txt"));
+  EXPECT_EQ(a, test::ReadFile(root_ / "b" / "CameraTrajectory.txt"));
+  EXPECT_EQ(test::ReadFile(root_ / "a" / "KeyFrameTrajectory.txt"),
+            test::ReadFile(root_ / "b" / "KeyFrameTrajectory.txt"));
 }
 
 TEST_F(LocalMappingTest, MapIsConsistentAfterEveryKeyFrame) {

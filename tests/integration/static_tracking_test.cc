@@ -1,13 +1,9 @@
 // End to end on synthetic sequences: synthesize with the CLI, run SLAM through the library in
 // sequential mode, evaluate against the exact ground truth.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -15,31 +11,20 @@
 #include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/sequence_runner.h"
+#include "synthesized_sequence.h"
 
 namespace drvslam {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 class StaticTrackingTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // One folder per process: CTest runs each test case in its own, in parallel.
-    root_ = fs::temp_directory_path() / ("drvslam_integration_static_" + std::to_string(getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-    const std::string command = std::string(DRVSLAM_CLI) +
-                                " --log-level warn synth --scenario static_xyz --frames 90 "
-                                "--seed 3 --out " +
-                                (root_ / "seq").string() + " > " + (root_ / "synth.log").string();
-    ASSERT_EQ(std::system(command.c_str()), 0) << ReadFile(root_ / "synth.log");
+    root_ = test::FreshTempFolder("drvslam_integration_static");
+    const std::string failure =
+        test::SynthesizeSequence(root_, "--scenario static_xyz --frames 90 --seed 3");
+    ASSERT_TRUE(failure.empty()) << failure;
   }
   static void TearDownTestSuite() { fs::remove_all(root_); }
 
@@ -67,19 +52,19 @@ TEST_F(StaticTrackingTest, TracksEveryFrameWithinOneCentimetre) {
   EXPECT_EQ(ate.matched, 90u);
   EXPECT_LT(ate.errors.rmse, 0.01) << "ATE RMSE " << ate.errors.rmse << " m";
   // The stats file is written next to the trajectories.
-  const std::string stats = ReadFile(root_ / "run1" / "stats.json");
+  const std::string stats = test::ReadFile(root_ / "run1" / "stats.json");
   EXPECT_NE(stats.find("\"tracked_ratio\": 1.0"), std::string::npos) << stats;
 }
 
 TEST_F(StaticTrackingTest, SequentialModeIsBitIdentical) {
   Run("a");
   Run("b");
-  const std::string a = ReadFile(root_ / "a" / "CameraTrajectory.txt");
-  const std::string b = ReadFile(root_ / "b" / "CameraTrajectory.txt");
+  const std::string a = test::ReadFile(root_ / "a" / "CameraTrajectory.txt");
+  const std::string b = test::ReadFile(root_ / "b" / "CameraTrajectory.txt");
   ASSERT_FALSE(a.empty());
   EXPECT_EQ(a, b);
-  EXPECT_EQ(ReadFile(root_ / "a" / "KeyFrameTrajectory.txt"),
-            ReadFile(root_ / "b" / "KeyFrameTrajectory.txt"));
+  EXPECT_EQ(test::ReadFile(root_ / "a" / "KeyFrameTrajectory.txt"),
+            test::ReadFile(root_ / "b" / "KeyFrameTrajectory.txt"));
 }
 
 TEST_F(StaticTrackingTest, AMissingFrameKeepsTheTrajectorySoFar) {

@@ -1,0 +1,35 @@
+#include "synthesized_sequence.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace drvslam::test {
+
+namespace fs = std::filesystem;
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+fs::path FreshTempFolder(const std::string& name) {
+  const fs::path root = fs::temp_directory_path() / (name + "_" + std::to_string(getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root);
+  return root;
+}
+
+std::string SynthesizeSequence(const fs::path& root, const std::string& synth_args) {
+  const fs::path log = root / "synth.log";
+  const std::string command = std::string(DRVSLAM_CLI) + " --log-level warn synth " + synth_args +
+                              " --out " + (root / "seq").string() + " > " + log.string() + " 2>&1";
+  if (std::system(command.c_str()) == 0) return "";
+  return command + "\n" + ReadFile(log);
+}
+
+}  // namespace drvslam::test
