@@ -1,5 +1,6 @@
 // RunDemo: the embedded default job a new user runs first, with no download. It synthesizes a
-// static and a dynamic version of the same camera path, runs SLAM on both, evaluates them
+// static and a dynamic version of the same camera path, runs SLAM on both (the dynamic one also
+// with dynamic handling off: the plain ORB-SLAM2 baseline it improves on), evaluates every run
 // against the exact ground truth and writes a report (report.md with plots).
 #pragma once
 
@@ -15,10 +16,13 @@ struct DemoOptions {
   unsigned seed = 1;
   // Scenarios to run, each synthesized into OUT/<scenario>/sequence.
   std::vector<std::string> scenarios = {"static_xyz", "walking_xyz"};
+  // Also run each scenario that has moving actors with --dynamic off, for comparison.
+  bool baseline = true;
 };
 
 struct DemoResult {
   std::string scenario;
+  std::string run;  // the run's name: the scenario, or "<scenario>, dynamic off"
   std::size_t frames = 0;
   std::size_t tracked = 0;
   std::size_t keyframes = 0;
@@ -30,6 +34,7 @@ struct DemoResult {
   double p95_ms = 0.0;
   double synth_fps = 0.0;
   std::string plot_path;
+  std::string plot_in_report;  // plot_path relative to the report's folder
 };
 
 // status(line) receives progress lines. Throws Error on failure.
