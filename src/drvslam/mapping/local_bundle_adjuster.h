@@ -21,6 +21,10 @@ struct LocalBundleAdjustmentStats {
   int removed_observations = 0;
   int iterations = 0;
   bool interrupted = false;  // stopped early by `interrupt`; what it reached is kept
+  // CPU time of the calling thread: all of AdjustLocalMap (gathering, solve, write-back, once
+  // the solve ran) and the solve alone.
+  double cpu_ms = 0.0;
+  double solve_cpu_ms = 0.0;
 };
 
 // `interrupt` (may be null) stops the solve early once it is true. max_local_keyframes > 0

@@ -139,6 +139,9 @@ class BundleSolver {
     problem_options_.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_options_.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_options_.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    // The blocks are built here from checked input: Ceres' own checks on every added residual
+    // block (and their bookkeeping) are pure cost.
+    problem_options_.disable_all_safety_checks = true;
     if (interrupt != nullptr) callback_ = std::make_unique<InterruptCallback>(interrupt);
   }
 
@@ -188,6 +191,9 @@ class BundleSolver {
     solver_options.num_threads = 1;
     solver_options.minimizer_progress_to_stdout = false;
     solver_options.logging_type = ceres::SILENT;
+    // The Schur solves are direct, and the LM damping is scaled by the Jacobian's column norms
+    // anyway: scaling the columns as well only costs time.
+    solver_options.jacobi_scaling = false;
     if (any_free_pose) {
       // Points first: eliminating them leaves a small dense system over the keyframe poses.
       solver_options.linear_solver_type = options_.linear_solver == BundleLinearSolver::kSparseSchur
