@@ -21,6 +21,8 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   std::printf("frames:      %zu%s\n", s.frames, summary.interrupted ? " (interrupted)" : "");
   std::printf("tracked:     %zu (%.1f%%)\n", s.tracked, ratio);
   std::printf("keyframes:   %zu\n", s.keyframes);
+  std::printf("lost:        %zu frames after initialization, %d relocalizations (%d attempts)\n",
+              s.frames_lost, s.relocalizations, s.relocalization_attempts);
   std::printf("map points:  %zu\n", s.map_points);
   for (const auto& [stage, timing] : s.stages) {
     std::printf("%-12s median %.2f ms, p95 %.2f ms\n", (stage + ":").c_str(), timing.median_ms,
@@ -40,8 +42,21 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
     std::printf("states:      precision %.3f, recall %.3f against ground truth\n", c.Precision(),
                 c.Recall());
   }
+  if (s.dense) {
+    const DenseMapStats& d = *s.dense;
+    std::printf("dense map:   %zu points (%zu key-object) from %zu keyframes; full res. %zu\n",
+                d.exported_points, d.object_points, d.keyframes, d.full_resolution_points);
+    std::printf("dense:       median %.2f ms, p95 %.2f ms per keyframe\n", d.keyframe_ms.median_ms,
+                d.keyframe_ms.p95_ms);
+  }
+  if (s.loop) {
+    const LoopClosingStats& l = *s.loop;
+    std::printf("loops:       %ld closed (%ld detected, %ld rejected), %ld global BA\n",
+                l.corrections, l.detections, l.rejected, l.global_bas);
+  }
   std::printf("wrote:       %s/{CameraTrajectory.txt,KeyFrameTrajectory.txt,stats.json}\n",
               out_dir.c_str());
+  if (s.dense) std::printf("             %s/{dense_map.ply,dense_map.pcd}\n", out_dir.c_str());
 }
 
 const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
@@ -67,6 +82,15 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
       ->add_option("--dynamic", dynamic.dynamic,
                    "on|off: dynamic-object handling (default: on when a segmenter is active); "
                    "off is plain ORB-SLAM2 tracking")
+      ->check(CLI::IsMember({"on", "off"}));
+  command
+      ->add_option("--dense", options->dense,
+                   "on|off: the dense mapping thread, writing dense_map.ply and dense_map.pcd "
+                   "(default: DenseMap.enabled, on)")
+      ->check(CLI::IsMember({"on", "off"}));
+  command
+      ->add_option("--loop", options->loop,
+                   "on|off: the loop closing thread (default: LoopClosing.enabled, on)")
       ->check(CLI::IsMember({"on", "off"}));
   command->add_flag("--realtime", dynamic.realtime,
                     "feed frames at the dataset's rate and track with the newest masks, carried "

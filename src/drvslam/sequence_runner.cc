@@ -10,6 +10,8 @@
 #include <thread>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dense/dense_export.h"
+#include "drvslam/dense/dense_stats_json.h"
 #include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/io/tum_dataset.h"
 
@@ -25,6 +27,9 @@ struct ResolvedSettings {
   SegmentationOptions segmentation;
   bool segmentation_backend_set = false;
   DynamicOptions dynamic;
+  RelocalizationOptions relocalization;
+  DenseMapOptions dense;
+  LoopClosingOptions loop;
   std::string source;
 };
 
@@ -46,6 +51,9 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   resolved.segmentation = LoadSegmentationOptions(file);
   resolved.segmentation_backend_set = file.Has("Segmentation.backend");
   resolved.dynamic = LoadDynamicOptions(file);
+  resolved.relocalization = LoadRelocalizationOptions(file);
+  resolved.dense = LoadDenseMapOptions(file);
+  resolved.loop = LoadLoopClosingOptions(file);
   file.LogUnreadKeys();
   resolved.source = path;
   return resolved;
@@ -54,6 +62,8 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
 void WriteOutputs(System& system, const fs::path& out_dir, RunSummary* summary) {
   // Local mapping finishes its queue first: the trajectories then include its corrections.
   system.Shutdown();
+  // Assembled with the final keyframe poses; stats then count the exported points.
+  if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string());
   summary->stats = system.Stats();
   summary->camera_trajectory_path = (out_dir / "CameraTrajectory.txt").string();
   WriteTumTrajectory(summary->camera_trajectory_path, system.CameraTrajectory(),
@@ -85,6 +95,21 @@ RunSummary RunSequence(const RunOptions& options,
   SystemOptions system_options;
   system_options.sequential = options.sequential;
   system_options.mapping = resolved.mapping;
+  system_options.relocalization = resolved.relocalization;
+  system_options.dense = resolved.dense;
+  system_options.loop = resolved.loop;
+  if (!options.loop.empty()) {
+    if (options.loop != "on" && options.loop != "off") {
+      throw Error("--loop = " + options.loop + " must be on or off");
+    }
+    system_options.loop.enabled = options.loop == "on";
+  }
+  if (!options.dense.empty()) {
+    if (options.dense != "on" && options.dense != "off") {
+      throw Error("--dense = " + options.dense + " must be on or off");
+    }
+    system_options.dense->enabled = options.dense == "on";
+  }
   const DynamicRunSetup dynamic =
       ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation,
                         resolved.segmentation_backend_set, resolved.dynamic);
@@ -137,6 +162,10 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["keyframes"] = s.keyframes;
   json["map_points"] = s.map_points;
   json["reference_fallbacks"] = s.reference_fallbacks;
+  json["frames_lost"] = s.frames_lost;
+  json["relocalization"] = {{"relocalizations", s.relocalizations},
+                            {"attempts", s.relocalization_attempts},
+                            {"vocabulary_load_ms", s.vocabulary_load_ms}};
   json["fps"] = s.fps;
   json["interrupted"] = summary.interrupted;
   json["settings"] = summary.settings_source;
@@ -147,6 +176,29 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   }
   if (summary.motion_states) {
     json["dynamic"]["motion_states"] = MotionStateScoresJson(*summary.motion_states);
+  }
+  if (s.dense) json["dense"] = DenseStatsJson(*s.dense);
+  if (s.loop) {
+    const LoopClosingStats& l = *s.loop;
+    nlohmann::json loops = nlohmann::json::array();
+    for (const LoopEvent& event : l.loops) {
+      loops.push_back({{"keyframe", event.keyframe_id},
+                       {"loop_keyframe", event.loop_keyframe_id},
+                       {"timestamp", event.timestamp},
+                       {"matches", event.matches},
+                       {"correction_m", event.correction_m},
+                       {"correction_deg", event.correction_deg}});
+    }
+    json["loop"] = {{"keyframes_processed", l.keyframes_processed},
+                    {"detections", l.detections},
+                    {"rejected", l.rejected},
+                    {"corrections", l.corrections},
+                    {"global_bas", l.global_bas},
+                    {"global_bas_interrupted", l.global_bas_interrupted},
+                    {"detection_ms", l.detection_ms},
+                    {"correction_ms", l.correction_ms},
+                    {"global_ba_ms", l.global_ba_ms},
+                    {"loops", loops}};
   }
   const LocalMappingStats& m = s.mapping;
   json["mapping"] = {{"keyframes_processed", m.keyframes_processed},

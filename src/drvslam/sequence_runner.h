@@ -22,6 +22,11 @@ struct RunOptions {
   // Segmentation and dynamic-object handling (--segmenter, --model, --dynamic, --realtime,
   // --debug-frames). --realtime also feeds frames at the dataset's rate (not in sequential mode).
   DynamicRunChoice dynamic;
+  // --dense on|off: the dense mapping thread (empty: DenseMap.enabled, default on); writes
+  // dense_map.ply and dense_map.pcd.
+  std::string dense;
+  // --loop on|off: the loop closing thread (empty: LoopClosing.enabled, default on).
+  std::string loop;
 };
 
 struct RunSummary {
@@ -41,9 +46,14 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps, stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
+// fps, frames_lost, relocalization.{relocalizations,attempts,vocabulary_load_ms},
+// stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
-// motion_states} and segmentation.{SegmentationStatsJson}).
+// motion_states} and segmentation.{SegmentationStatsJson}, and with dense mapping
+// dense.{DenseStatsJson}, and with loop closing loop.{keyframes_processed, detections,
+// rejected, corrections, global_bas, global_bas_interrupted, detection_ms, correction_ms,
+// global_ba_ms, loops[{keyframe, loop_keyframe, timestamp, matches, correction_m,
+// correction_deg}]}).
 void WriteStatsJson(const std::string& path, const RunSummary& summary);
 
 }  // namespace drvslam

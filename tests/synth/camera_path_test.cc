@@ -22,6 +22,29 @@ double AxisDistance(const SE3& T_wc, const Eigen::Vector3d& point) {
   return (offset - offset.dot(axis) * axis).norm();
 }
 
+TEST(CameraPathTest, CircuitLooksOutwardsAndReturnsToItsStart) {
+  const ViewAnchor anchor;
+  const CameraPath circuit = CameraPath::Procedural(PathKind::kCircuit, anchor, 4);
+  EXPECT_EQ(PathKindName(circuit.Kind()), "circuit");
+  const Eigen::Vector2d centre = anchor.target.head<2>();
+  double turned = 0.0;
+  for (double t = 0.0; t < CameraPath::kCircuitPeriod; t += 0.1) {
+    const SE3 pose = circuit.PoseAt(t);
+    const Eigen::Vector2d radial = pose.Translation().head<2>() - centre;
+    EXPECT_NEAR(radial.norm(), CameraPath::kCircuitRadius, 0.01);
+    // The optical axis points away from the table and down.
+    const Eigen::Vector3d axis = pose.Rotation().col(2);
+    EXPECT_GT(axis.head<2>().normalized().dot(radial.normalized()), 0.99);
+    EXPECT_LT(axis.z(), -0.2);
+    turned = std::max(turned, AngleBetween(circuit.PoseAt(0.0), pose));
+  }
+  EXPECT_GT(turned, 170.0 * kDegree);
+  const SE3 start = circuit.PoseAt(0.0);
+  const SE3 again = circuit.PoseAt(CameraPath::kCircuitPeriod);
+  EXPECT_LT((start.Translation() - again.Translation()).norm(), 0.01);
+  EXPECT_LT(AngleBetween(start, again), 1.0 * kDegree);
+}
+
 TEST(CameraPathTest, ProceduralPathsStayWithinTheirMotion) {
   const ViewAnchor anchor;
   const SE3 home = anchor.Pose();

@@ -1,5 +1,5 @@
 // RequireOption: the one way options structs' Check() report a bad value, so every message reads
-// "<key> = <value> <rule>" (callers add the file name).
+// "<key> = <value> <rule>"; CheckedOptions adds the settings file's name when loading.
 #pragma once
 
 #include <sstream>
@@ -15,6 +15,18 @@ void RequireOption(bool ok, const std::string& key, const T& value, const std::s
   std::ostringstream message;
   message << key << " = " << value << " " << rule;
   throw Error(message.str());
+}
+
+// Runs options.Check() on options loaded from the settings file at `path` and returns them; a
+// failure's message is prefixed with the path.
+template <typename Options>
+Options CheckedOptions(const std::string& path, Options options) {
+  try {
+    options.Check();
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
+  return options;
 }
 
 }  // namespace drvslam

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "drvslam/core/se3.h"
+#include "drvslam/map/bow_vector.h"
 #include "drvslam/map/frame_features.h"
 
 namespace drvslam {
@@ -47,6 +48,11 @@ class Frame {
   std::vector<std::shared_ptr<MapPoint>> map_points;  // one slot per keypoint
   std::vector<bool> outlier;
   std::shared_ptr<KeyFrame> reference_keyframe;
+  // Bag of words and direct index, computed on demand (relocalization, BoW matching, keyframe
+  // creation) and handed on to the keyframe made from this frame.
+  bool has_bow = false;
+  BowVector bow;
+  FeatureVector bow_features;
 
  private:
   long id_;

@@ -1,6 +1,7 @@
 #include "drvslam/map/keyframe.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "drvslam/map/map_point.h"
 
@@ -17,6 +18,24 @@ KeyFrame::KeyFrame(long id, long frame_id, double timestamp,
       T_wc_(T_cw.Inverse()),
       map_points_(map_points) {
   map_points_.resize(features_->Size());
+}
+
+void KeyFrame::SetBow(BowVector bow, FeatureVector bow_features) {
+  std::lock_guard<std::mutex> lock(bow_mutex_);
+  if (has_bow_.load(std::memory_order_relaxed)) return;
+  bow_ = std::move(bow);
+  bow_features_ = std::move(bow_features);
+  has_bow_.store(true, std::memory_order_release);
+}
+
+const BowVector& KeyFrame::Bow() const {
+  static const BowVector kEmpty;
+  return HasBow() ? bow_ : kEmpty;
+}
+
+const FeatureVector& KeyFrame::BowFeatures() const {
+  static const FeatureVector kEmpty;
+  return HasBow() ? bow_features_ : kEmpty;
 }
 
 SE3 KeyFrame::Pose() const {

@@ -2,15 +2,18 @@
 // holds its map-point associations, its pose, its covisibility edges (weight = map points seen
 // by both, an edge from kMinCovisibilityWeight shared points) and its spanning-tree links.
 // Thread-safety: pose_mutex_ guards the pose; features_mutex_ the map-point slots;
-// connections_mutex_ the covisibility graph, spanning tree and bad flag.
+// connections_mutex_ the covisibility graph, spanning tree and bad flag. The bag of words is set
+// once (SetBow) and immutable afterwards, so readers need no lock once HasBow() is true.
 #pragma once
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <vector>
 
 #include "drvslam/core/se3.h"
+#include "drvslam/map/bow_vector.h"
 #include "drvslam/map/frame_features.h"
 
 namespace drvslam {
@@ -43,6 +46,14 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   void ReplaceMapPointAt(std::size_t index, const std::shared_ptr<MapPoint>& point);
   // Points (not bad) observed by at least min_observations keyframes.
   int TrackedMapPoints(int min_observations) const;
+
+  // The keyframe's bag of words and direct index (FeatureVector over its keypoint indices), for
+  // place recognition and BoW matching. Set once, normally at creation from the frame's;
+  // later calls are ignored. Before that both are empty.
+  bool HasBow() const { return has_bow_.load(std::memory_order_acquire); }
+  void SetBow(BowVector bow, FeatureVector bow_features);
+  const BowVector& Bow() const;
+  const FeatureVector& BowFeatures() const;
 
   // Camera-frame depth of a world point, used to sort and predict.
   double DepthOf(const Eigen::Vector3d& point_w) const;
@@ -78,6 +89,11 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   const long frame_id_;
   const double timestamp_;
   const std::shared_ptr<const FrameFeatures> features_;
+
+  std::mutex bow_mutex_;  // serialises SetBow calls
+  std::atomic<bool> has_bow_{false};
+  BowVector bow_;
+  FeatureVector bow_features_;
 
   mutable std::mutex pose_mutex_;
   SE3 T_cw_;

@@ -60,6 +60,7 @@ void LocalMapper::InsertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
   if (!threaded_) {
     Process(keyframe);
     AssertConsistent(map_, "after a keyframe");
+    if (sink_ && !keyframe->IsBad()) sink_(keyframe);
     return;
   }
   ++pending_;
@@ -97,14 +98,44 @@ LocalMappingStats LocalMapper::Stats() const {
   return stats_;
 }
 
+void LocalMapper::Pause() {
+  if (!threaded_) return;
+  std::unique_lock<std::mutex> lock(pause_mutex_);
+  ++pause_requests_;
+  pause_requested_ = true;
+  abort_ba_ = true;
+  pause_changed_.wait(lock, [this] { return !busy_; });
+}
+
+void LocalMapper::Resume() {
+  if (!threaded_) return;
+  std::lock_guard<std::mutex> lock(pause_mutex_);
+  if (pause_requests_ > 0) --pause_requests_;
+  pause_requested_ = pause_requests_ > 0;
+  pause_changed_.notify_all();
+}
+
 void LocalMapper::Run() {
   while (auto keyframe = queue_.Pop()) {
+    {
+      std::unique_lock<std::mutex> lock(pause_mutex_);
+      pause_changed_.wait(lock, [this] { return pause_requests_ == 0; });
+      busy_ = true;
+    }
     try {
       Process(*keyframe);
     } catch (const std::exception& e) {
       // The thread must survive: the keyframe keeps whatever steps completed.
       spdlog::error("local mapping: keyframe {}: {}", (*keyframe)->Id(), e.what());
     }
+    {
+      std::lock_guard<std::mutex> lock(pause_mutex_);
+      busy_ = false;
+      pause_changed_.notify_all();
+    }
+    // Outside the busy section: the sink may block on a full loop queue while loop closing
+    // waits for this thread to pause.
+    if (sink_ && !(*keyframe)->IsBad()) sink_(*keyframe);
     --pending_;
   }
 }
@@ -113,7 +144,9 @@ void LocalMapper::Record(const char* stage, double milliseconds) {
   if (timings_ != nullptr) timings_->Record(stage, milliseconds);
 }
 
-bool LocalMapper::ShouldYield() const { return Stale() || (threaded_ && queue_.Size() > 0); }
+bool LocalMapper::ShouldYield() const {
+  return Stale() || (threaded_ && (queue_.Size() > 0 || pause_requested_.load()));
+}
 
 void LocalMapper::Process(const std::shared_ptr<KeyFrame>& keyframe) {
   const Stopwatch watch;

@@ -10,6 +10,8 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -69,6 +71,18 @@ class LocalMapper final : public MappingStatus {
 
   LocalMappingStats Stats() const;
 
+  // Receives every keyframe once local mapping is done with it (loop closing attaches here;
+  // mapping cannot depend on it). Called on the thread that ran the steps; set before the
+  // first keyframe.
+  using KeyFrameSink = std::function<void(const std::shared_ptr<KeyFrame>&)>;
+  void SetKeyFrameSink(KeyFrameSink sink) { sink_ = std::move(sink); }
+
+  // Loop correction: Pause() returns once the mapper is between keyframes (the running one
+  // finishes, skipping its optional steps) and keeps it there until the matching Resume();
+  // keyframes still queue meanwhile. Pauses nest. Without a thread both return at once.
+  void Pause();
+  void Resume();
+
  private:
   void Run();
   void Process(const std::shared_ptr<KeyFrame>& keyframe);
@@ -89,6 +103,13 @@ class LocalMapper final : public MappingStatus {
   std::atomic<long> reset_epoch_{0};
   std::atomic<bool> shut_down_{false};
   std::thread thread_;
+
+  KeyFrameSink sink_;
+  std::mutex pause_mutex_;
+  std::condition_variable pause_changed_;
+  int pause_requests_ = 0;  // guarded by pause_mutex_
+  bool busy_ = false;       // a keyframe is being processed; guarded by pause_mutex_
+  std::atomic<bool> pause_requested_{false};
 
   RecentMapPoints recent_;
   long last_epoch_ = 0;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/option_check.h"
 
 namespace drvslam {
 namespace {
@@ -61,12 +62,7 @@ LocalMappingOptions LoadLocalMappingOptions(const SettingsFile& file) {
   o.redundant_ratio = file.GetDouble("LocalMapping.redundantRatio", o.redundant_ratio);
   o.redundant_observers = file.GetInt("LocalMapping.redundantObservers", o.redundant_observers);
   o.queue_capacity = file.GetInt("LocalMapping.queueCapacity", o.queue_capacity);
-  try {
-    o.Check();
-  } catch (const Error& e) {
-    throw Error(file.Path() + ": " + e.what());
-  }
-  return o;
+  return CheckedOptions(file.Path(), o);
 }
 
 }  // namespace drvslam

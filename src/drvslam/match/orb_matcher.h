@@ -1,7 +1,8 @@
 // ORB matching for tracking: by projection of the last frame's or the local map's points into
 // the current frame (windowed search, descriptor distance, ratio and orientation checks), and
-// by brute-force descriptor matching against a keyframe (until a vocabulary exists); for local
-// mapping, the epipolar search for triangulation and the fusion of duplicate points.
+// by brute-force descriptor matching against a keyframe (the fallback without a vocabulary:
+// match/bow_matcher.h is faster with one); for local mapping, the epipolar search for
+// triangulation and the fusion of duplicate points.
 // Tracking matches are written into Frame::map_points; functions return how many were added.
 #pragma once
 

@@ -78,6 +78,8 @@ std::string PathKindName(PathKind kind) {
       return "halfsphere";
     case PathKind::kReplay:
       return "replay";
+    case PathKind::kCircuit:
+      return "circuit";
   }
   return "unknown";
 }
@@ -227,6 +229,16 @@ SE3 CameraPath::PoseAt(double t) const {
           std::cos(polar) * -R.col(2) +
           std::sin(polar) * (std::cos(azimuth) * R.col(0) + std::sin(azimuth) * R.col(1));
       return LookAt(anchor_.position + 0.5 * direction, anchor_.target) * hand;
+    }
+    case PathKind::kCircuit: {
+      // Starts on the side of the standard viewpoint, looking away from the table.
+      const Eigen::Vector2d start = (anchor_.position - anchor_.target).head<2>().normalized();
+      const double angle = std::atan2(start.y(), start.x()) + kTwoPi * t / kCircuitPeriod;
+      const Eigen::Vector3d outwards(std::cos(angle), std::sin(angle), 0.0);
+      const Eigen::Vector3d eye(anchor_.target.x() + kCircuitRadius * outwards.x(),
+                                anchor_.target.y() + kCircuitRadius * outwards.y(), 1.3);
+      const Eigen::Vector3d look = outwards - std::tan(20.0 * kDegree) * Eigen::Vector3d::UnitZ();
+      return LookAt(eye, eye + look) * hand;
     }
     default:
       return anchor_pose_ * hand;

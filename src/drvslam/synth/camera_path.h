@@ -15,20 +15,26 @@
 
 namespace drvslam::synth {
 
-enum class PathKind { kXyz, kStatic, kRpy, kHalfsphere, kReplay };
+enum class PathKind { kXyz, kStatic, kRpy, kHalfsphere, kReplay, kCircuit };
 
-// "xyz", "static", "rpy", "halfsphere", "replay".
+// "xyz", "static", "rpy", "halfsphere", "replay", "circuit".
 std::string PathKindName(PathKind kind);
 
 class CameraPath {
  public:
+  static constexpr double kCircuitRadius = 0.6;   // metres
+  static constexpr double kCircuitPeriod = 12.0;  // seconds per turn
+
   // Smooth closed-form motion around `anchor`, with hand shake; the seed picks phases and
   // shake, so a dynamic scenario and its static counterpart share one path.
   //  xyz: translations along the camera's axes (about +-0.3, 0.2, 0.25 m);
   //  rpy: rotations about the camera centre (yaw +-25, pitch +-15, roll +-15 degrees);
   //  halfsphere: the centre sweeps a half-sphere of 1 m diameter behind the anchor while the
   //    camera keeps looking at the anchor's target;
-  //  static: the anchor held by hand (a few mm and a few tenths of a degree of shake).
+  //  static: the anchor held by hand (a few mm and a few tenths of a degree of shake);
+  //  circuit: the centre circles the anchor's target (radius kCircuitRadius, at 1.3 m)
+  //    looking outwards and 20 degrees down, one turn every kCircuitPeriod seconds, so the
+  //    views of the start come back after every other wall (a loop for loop closing).
   static CameraPath Procedural(PathKind kind, const ViewAnchor& anchor, uint64_t seed);
 
   // Replays `recorded` (camera-to-world, increasing stamps, at least 2 poses). The recorded

@@ -15,6 +15,9 @@ std::vector<Scenario> MakeScenarios() {
       {PathKind::kStatic, "hand-held camera kept still"},
       {PathKind::kRpy, "camera rotating in roll, pitch and yaw"},
       {PathKind::kHalfsphere, "camera sweeping a half-sphere of 1 m diameter"},
+      {PathKind::kCircuit,
+       "camera circling the table looking outwards, one turn every 12 s, back at its start "
+       "(a loop)"},
   };
   std::vector<Scenario> scenarios;
   for (const Path& path : paths) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "drvslam/match/bow_matcher.h"
 #include "drvslam/tracking/keyframe_factory.h"
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/observation_weight.h"
@@ -16,6 +17,8 @@ constexpr double kMotionModelRadius = 7.0;
 constexpr double kLocalMapRadius = 3.0;
 constexpr int kMinMotionMatches = 20;
 constexpr int kMinReferenceMatches = 15;
+constexpr double kReferenceRatio = 0.7;
+constexpr int kMinInliersAfterRelocalization = 50;
 constexpr int kMinPoseInliers = 10;
 // A point seen at more than 60 degrees from its mean viewing direction is not searched.
 constexpr double kMinViewCos = 0.5;
@@ -50,6 +53,7 @@ TrackingResult Tracker::Track(Frame frame) {
   if (state_ == TrackingState::kNotInitialized) {
     if (Initialize()) {
       state_ = TrackingState::kOk;
+      AttachBow(*last_keyframe_);
       result.new_keyframe = last_keyframe_;
       result.inliers = static_cast<int>(map_.MapPointCount());
       recorder_.AddTracked(current_->Timestamp(), current_->Pose(), reference_keyframe_);
@@ -62,18 +66,26 @@ TrackingResult Tracker::Track(Frame frame) {
   }
 
   CheckReplacedInLastFrame();
+  if (map_corrected_.exchange(false)) ReanchorLastFrame();
   bool ok = false;
+  bool relocalized = false;
   if (state_ == TrackingState::kOk) {
     if (velocity_ && last_frame_) ok = TrackWithMotionModel();
     if (!ok) {
       ok = TrackReferenceKeyFrame();
       if (ok) ++reference_fallbacks_;
     }
+    // A jump of the camera (or a stretch of unusable frames) is caught at once, not one frame
+    // later, when a vocabulary exists.
+    if (!ok && place_recognition_ != nullptr) {
+      ok = Relocalize();
+      relocalized = ok;
+    }
   } else {
-    // Lost: until relocalization exists, retry against the last reference keyframe from the
-    // last known pose.
-    ok = TrackReferenceKeyFrame();
+    ok = Relocalize();
+    relocalized = ok;
   }
+  if (relocalized && place_recognition_ != nullptr) last_relocalization_frame_id_ = current_->Id();
   if (ok) ok = TrackLocalMap();
 
   if (!ok) {
@@ -91,15 +103,25 @@ TrackingResult Tracker::Track(Frame frame) {
   }
 
   state_ = TrackingState::kOk;
-  velocity_ = current_->Pose() * last_frame_->Pose().Inverse();
+  if (relocalized) {
+    // The last tracked frame is from before the loss: the motion model starts afresh.
+    ++relocalizations_;
+    velocity_.reset();
+    spdlog::debug("frame {} ({:.6f}): relocalized against keyframe {}", current_->Id(),
+                  current_->Timestamp(), reference_keyframe_ ? reference_keyframe_->Id() : -1);
+  } else {
+    velocity_ = current_->Pose() * last_frame_->Pose().Inverse();
+  }
   result.inliers = matches_inliers_;
   if (NeedNewKeyFrame()) {
     last_keyframe_ = CreateKeyFrame(*current_, map_, options_.new_points_per_keyframe);
+    AttachBow(*last_keyframe_);
     last_keyframe_frame_id_ = current_->Id();
     reference_keyframe_ = last_keyframe_;
     result.new_keyframe = last_keyframe_;
   }
   current_->reference_keyframe = reference_keyframe_;
+  last_frame_T_cr_ = current_->Pose() * reference_keyframe_->InversePose();
   recorder_.AddTracked(current_->Timestamp(), current_->Pose(), reference_keyframe_);
   // Outliers are not carried to the next frame's projection search.
   for (std::size_t i = 0; i < current_->Size(); ++i) {
@@ -137,10 +159,38 @@ bool Tracker::TrackWithMotionModel() {
 bool Tracker::TrackReferenceKeyFrame() {
   if (!reference_keyframe_ || !last_frame_) return false;
   std::fill(current_->map_points.begin(), current_->map_points.end(), nullptr);
-  const int matches = matcher_.SearchByDescriptors(*reference_keyframe_, *current_, 0.7);
+  int matches = 0;
+  if (options_.bow_reference_matching && place_recognition_ != nullptr &&
+      reference_keyframe_->HasBow()) {
+    place_recognition_->ComputeBow(*current_);
+    BowMatchOptions bow_options;
+    bow_options.nn_ratio = kReferenceRatio;
+    matches = SearchByBow(*reference_keyframe_, *current_, bow_options, &current_->map_points);
+  } else {
+    matches = matcher_.SearchByDescriptors(*reference_keyframe_, *current_, kReferenceRatio);
+  }
   if (matches < kMinReferenceMatches) return false;
   current_->SetPose(last_frame_->Pose());
   return OptimizeCurrentPose() >= kMinPoseInliers;
+}
+
+bool Tracker::Relocalize() {
+  if (place_recognition_ == nullptr) {
+    // Without a vocabulary: retry against the last reference keyframe from the last pose.
+    return TrackReferenceKeyFrame();
+  }
+  std::fill(current_->map_points.begin(), current_->map_points.end(), nullptr);
+  std::fill(current_->outlier.begin(), current_->outlier.end(), false);
+  place_recognition_->ComputeBow(*current_);
+  if (!place_recognition_->Relocalize(*current_)) return false;
+  if (current_->reference_keyframe) reference_keyframe_ = current_->reference_keyframe;
+  return true;
+}
+
+void Tracker::AttachBow(KeyFrame& keyframe) {
+  if (place_recognition_ == nullptr) return;
+  place_recognition_->ComputeBow(*current_);
+  keyframe.SetBow(current_->bow, current_->bow_features);
 }
 
 bool Tracker::TrackLocalMap() {
@@ -177,7 +227,16 @@ bool Tracker::TrackLocalMap() {
     point->IncreaseFound();
     if (point->ObservationCount() > 0) ++matches_inliers_;
   }
-  return matches_inliers_ >= options_.min_inliers;
+  // Just after a relocalization a wrong pose must not pass: ORB-SLAM2 asks for 50 inliers.
+  const int min_inliers = RecentlyRelocalized()
+                              ? std::max(options_.min_inliers, kMinInliersAfterRelocalization)
+                              : options_.min_inliers;
+  return matches_inliers_ >= min_inliers;
+}
+
+bool Tracker::RecentlyRelocalized() const {
+  return last_relocalization_frame_id_ >= 0 &&
+         current_->Id() < last_relocalization_frame_id_ + max_frames_between_keyframes_;
 }
 
 int Tracker::OptimizeCurrentPose() {
@@ -215,6 +274,12 @@ int Tracker::OptimizeCurrentPose() {
 }
 
 bool Tracker::NeedNewKeyFrame() const {
+  // A relocalized camera adds no keyframe for a while unless the map is small: the pose is
+  // confirmed by the next frames first (ORB-SLAM2's rule).
+  if (RecentlyRelocalized() &&
+      static_cast<int>(map_.KeyFrameCount()) > max_frames_between_keyframes_) {
+    return false;
+  }
   KeyFrameEvidence evidence;
   evidence.frames_since_keyframe = static_cast<int>(current_->Id() - last_keyframe_frame_id_);
   evidence.max_frames = max_frames_between_keyframes_;
@@ -253,9 +318,22 @@ void Tracker::CheckReplacedInLastFrame() {
   }
 }
 
+void Tracker::ReanchorLastFrame() {
+  if (!last_frame_ || !last_frame_->reference_keyframe) return;
+  // A removed reference is replaced by its spanning-tree parent, as the trajectory does.
+  std::shared_ptr<KeyFrame> reference = last_frame_->reference_keyframe;
+  SE3 T_cr = last_frame_T_cr_;
+  while (reference->IsBad() && reference->Parent()) {
+    T_cr = T_cr * reference->PoseRelativeToParent();
+    reference = reference->Parent();
+  }
+  last_frame_->SetPose(T_cr * reference->Pose());
+}
+
 void Tracker::ResetMap() {
   spdlog::warn("tracking lost: starting a new map");
   if (mapping_ != nullptr) mapping_->RequestReset();
+  if (place_recognition_ != nullptr) place_recognition_->Reset();
   map_.Clear();
   reference_keyframe_.reset();
   last_keyframe_.reset();

@@ -4,6 +4,7 @@
 // the map it shares is guarded by the Map/KeyFrame/MapPoint mutexes.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <optional>
 
@@ -13,6 +14,7 @@
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/tracking/local_map.h"
 #include "drvslam/tracking/mapping_status.h"
+#include "drvslam/tracking/place_recognition.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "drvslam/tracking/trajectory_recorder.h"
 
@@ -38,6 +40,12 @@ class Tracker {
   // Local mapping, consulted for keyframe decisions and told about map resets (may be null:
   // then mapping counts as always idle). Not owned; set before the first Track.
   void SetMappingStatus(MappingStatus* mapping) { mapping_ = mapping; }
+  // Bag-of-words services (may be null: keyframes then carry no bag of words, and a lost
+  // tracker retries against its last reference keyframe instead of relocalizing). Not owned;
+  // set before the first Track.
+  void SetPlaceRecognition(PlaceRecognition* place_recognition) {
+    place_recognition_ = place_recognition;
+  }
 
   TrackingState State() const { return state_; }
   const TrajectoryRecorder& Recorder() const { return recorder_; }
@@ -45,22 +53,39 @@ class Tracker {
   const std::optional<Frame>& LastFrame() const { return last_frame_; }
   // Frames for which the motion model failed and the reference keyframe was used.
   int ReferenceFallbacks() const { return reference_fallbacks_; }
+  // Times tracking was lost and found again: by relocalization, or without place recognition by
+  // the retry against the last reference keyframe.
+  int Relocalizations() const { return relocalizations_; }
+
+  // Loop closing moved keyframes: before the next frame, the last frame is re-anchored to its
+  // reference keyframe's corrected pose, so the motion model predicts in the corrected map.
+  // Thread-safe (callable from the loop closing thread).
+  void NotifyMapCorrected() { map_corrected_ = true; }
 
  private:
   bool Initialize();
   bool TrackWithMotionModel();
   bool TrackReferenceKeyFrame();
+  // Lost: relocalization through place_recognition_, or without it the reference keyframe.
+  bool Relocalize();
+  // Gives a new keyframe the bag of words of the frame it was made from.
+  void AttachBow(KeyFrame& keyframe);
   bool TrackLocalMap();
   // Pose-only optimization of current_ from its matches; outlier matches are dropped.
   // Returns the inlier count.
   int OptimizeCurrentPose();
   bool NeedNewKeyFrame() const;
+  // Within max_frames_between_keyframes_ frames of the last relocalization.
+  bool RecentlyRelocalized() const;
   // Local mapping may have replaced (fused) or removed points the last frame still holds.
   void CheckReplacedInLastFrame();
+  // Moves the last frame with its reference keyframe (after NotifyMapCorrected).
+  void ReanchorLastFrame();
   void ResetMap();
 
   Map& map_;
   MappingStatus* mapping_ = nullptr;
+  PlaceRecognition* place_recognition_ = nullptr;
   TrackerOptions options_;
   int max_frames_between_keyframes_;
   OrbMatcher matcher_;
@@ -75,7 +100,11 @@ class Tracker {
   long last_keyframe_frame_id_ = 0;
   int matches_inliers_ = 0;
   int reference_fallbacks_ = 0;
+  int relocalizations_ = 0;
+  long last_relocalization_frame_id_ = -1;
   TrajectoryRecorder recorder_;
+  std::atomic<bool> map_corrected_{false};
+  SE3 last_frame_T_cr_;  // the last frame relative to its reference keyframe
 };
 
 }  // namespace drvslam

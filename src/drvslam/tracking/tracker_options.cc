@@ -26,12 +26,9 @@ TrackerOptions LoadTrackerOptions(const SettingsFile& file) {
       file.GetInt("Tracking.newPointsPerKeyframe", o.new_points_per_keyframe);
   o.min_inliers = file.GetInt("Tracking.minInliers", o.min_inliers);
   o.reset_when_lost = file.GetBool("Tracking.resetWhenLost", o.reset_when_lost);
-  try {
-    o.Check();
-  } catch (const Error& e) {
-    throw Error(file.Path() + ": " + e.what());
-  }
-  return o;
+  o.bow_reference_matching =
+      file.GetBool("Tracking.bowReferenceMatching", o.bow_reference_matching);
+  return CheckedOptions(file.Path(), o);
 }
 
 }  // namespace drvslam

@@ -17,12 +17,17 @@ struct TrackerOptions {
   // When tracking is lost: start a new map (true) or keep trying to recover against the last
   // reference keyframe (false, the default; relocalization proper needs the vocabulary).
   bool reset_when_lost = false;
+  // Matching against the reference keyframe (when the motion model fails): by bag of words,
+  // among features under the same vocabulary node (true, when a vocabulary is loaded), or by
+  // brute force over every descriptor pair (false).
+  bool bow_reference_matching = true;
 
   void Check() const;  // throws Error naming the bad key
 };
 
 // Reads Tracking.minInitialPoints, Tracking.maxFramesBetweenKeyframes,
-// Tracking.newPointsPerKeyframe, Tracking.minInliers and Tracking.resetWhenLost.
+// Tracking.newPointsPerKeyframe, Tracking.minInliers, Tracking.resetWhenLost and
+// Tracking.bowReferenceMatching.
 TrackerOptions LoadTrackerOptions(const SettingsFile& file);
 
 }  // namespace drvslam

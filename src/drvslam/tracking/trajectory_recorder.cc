@@ -25,6 +25,17 @@ std::size_t TrajectoryRecorder::TrackedCount() const {
   return tracked;
 }
 
+std::size_t TrajectoryRecorder::LostAfterInitialization() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::size_t lost = 0;
+  bool initialized = false;
+  for (const Entry& entry : entries_) {
+    initialized = initialized || entry.tracked;
+    if (initialized && !entry.tracked) ++lost;
+  }
+  return lost;
+}
+
 drvslam::Trajectory TrajectoryRecorder::CameraTrajectory() const {
   std::lock_guard<std::mutex> lock(mutex_);
   drvslam::Trajectory trajectory;

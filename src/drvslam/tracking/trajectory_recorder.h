@@ -20,6 +20,9 @@ class TrajectoryRecorder {
 
   std::size_t FrameCount() const;
   std::size_t TrackedCount() const;
+  // Frames not tracked after the first tracked one: frames lost, as opposed to frames before
+  // the map could be initialized.
+  std::size_t LostAfterInitialization() const;
   // Camera-to-world poses of the tracked frames, through their reference keyframes' current
   // poses (a reference keyframe removed since is replaced by its spanning-tree parent).
   drvslam::Trajectory CameraTrajectory() const;

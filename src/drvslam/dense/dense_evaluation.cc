@@ -1,0 +1,99 @@
+#include "drvslam/dense/dense_evaluation.h"
+
+#include <filesystem>
+
+#include "drvslam/core/error.h"
+#include "drvslam/core/timing.h"
+#include "drvslam/dense/ground_truth_mapping.h"
+#include "drvslam/dense/point_cloud_io.h"
+#include "drvslam/io/tum_dataset.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The rebuilt sequence must be the one on disk: its poses match groundtruth.txt.
+void CheckRebuilt(const synth::SynthSequence& sequence, const Trajectory& truth,
+                  const std::string& dataset) {
+  const std::size_t n = std::min<std::size_t>(truth.size(), sequence.FrameCount());
+  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(1, n / 10)) {
+    const double error =
+        (truth[i].T_wc.Translation() - sequence.Pose(static_cast<int>(i)).Translation()).norm();
+    if (error > 1e-3) {
+      throw Error(dataset + ": groundtruth.txt differs from the sequence rebuilt from " +
+                  "settings.yaml (pose " + std::to_string(i) + " off by " + std::to_string(error) +
+                  " m)");
+    }
+  }
+}
+
+}  // namespace
+
+DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
+                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (!options.removal.empty() && options.removal != "on" && options.removal != "off") {
+    throw Error("--removal = " + options.removal + " must be on or off");
+  }
+  if (options.truth.ghost_margin <= 0 || options.truth.max_distance <= 0 ||
+      options.truth.density_cell <= 0) {
+    throw Error("ghost margin, distance cap and density cell must be positive");
+  }
+  const std::string settings_path = (fs::path(options.dataset) / "settings.yaml").string();
+  if (!fs::exists(settings_path)) throw Error(settings_path + ": missing");
+  const SettingsFile settings(settings_path);
+  const TumDataset dataset(options.dataset);
+  if (!dataset.HasGroundTruth()) throw Error(options.dataset + ": no groundtruth.txt");
+
+  DenseEvaluation evaluation;
+  DenseCloud cloud;
+  int frames = static_cast<int>(dataset.Size());
+  if (options.map.empty()) {
+    GroundTruthMappingOptions mapping;
+    mapping.dense = LoadDenseMapOptions(settings);
+    if (!options.removal.empty()) mapping.dense.remove_dynamic = options.removal == "on";
+    mapping.keyframe_every = options.keyframe_every;
+    mapping.max_frames = options.max_frames;
+    GroundTruthMapping built = MapWithGroundTruth(options.dataset, mapping, progress);
+    cloud = std::move(built.cloud);
+    evaluation.stats = built.stats;
+    if (options.max_frames > 0) frames = std::min(frames, static_cast<int>(options.max_frames));
+    if (!options.out_dir.empty()) {
+      std::error_code error;
+      fs::create_directories(options.out_dir, error);
+      WritePlyCloud((fs::path(options.out_dir) / "dense_map.ply").string(), cloud);
+      WritePcdCloud((fs::path(options.out_dir) / "dense_map.pcd").string(), cloud);
+    }
+  } else {
+    cloud = ReadPlyCloud(options.map);
+    if (!options.trajectory.empty()) {
+      const Trajectory estimate = ReadTumTrajectory(options.trajectory);
+      cloud = AlignCloudToTruth(cloud, estimate, dataset.GroundTruth());
+      // Actors count up to the run's last frame.
+      if (!estimate.empty()) {
+        int last = 0;
+        for (std::size_t i = 0; i < dataset.Size(); ++i) {
+          if (dataset.Timestamp(i) <= estimate.back().timestamp + 1e-3) {
+            last = static_cast<int>(i) + 1;
+          }
+        }
+        frames = last;
+      }
+    }
+    if (options.max_frames > 0) frames = std::min(frames, static_cast<int>(options.max_frames));
+  }
+
+  const Stopwatch watch;
+  const synth::SynthSequence sequence(SynthOptionsFromSettings(settings));
+  CheckRebuilt(sequence, dataset.GroundTruth(), options.dataset);
+  const synth::TriangleList swept =
+      SweptActorGeometry(sequence, options.truth.actor_frame_stride, frames);
+  evaluation.frames = frames;
+  evaluation.actor_triangles = swept.size();
+  evaluation.scores = ScoreDenseCloud(cloud, sequence.Scene().triangles, swept,
+                                      KeyObjectLabels(sequence), options.truth);
+  evaluation.seconds = watch.ElapsedMs() / 1000.0;
+  return evaluation;
+}
+
+}  // namespace drvslam

@@ -1,0 +1,21 @@
+// ExportDenseMap: writes the dense map as it stands - assembled with the current keyframe poses
+// - to FOLDER/dense_map.ply and FOLDER/dense_map.pcd. `drvslam run` calls it at shutdown; any
+// caller may call it while mapping runs (Assemble is thread-safe).
+#pragma once
+
+#include <string>
+
+#include "drvslam/dense/dense_mapper.h"
+
+namespace drvslam {
+
+struct DenseExport {
+  std::string ply_path;
+  std::string pcd_path;
+  std::size_t points = 0;
+};
+
+// Creates the folder when missing. Throws Error naming the path that cannot be written.
+DenseExport ExportDenseMap(DenseMapper& mapper, const std::string& folder);
+
+}  // namespace drvslam

@@ -1,0 +1,128 @@
+// DenseMapper: the dense mapping thread (DESIGN.md's pipeline). Tracking hands it every tracked
+// frame (kept in a short ring for the enhancement step) and each new keyframe (queued). Per
+// keyframe it back-projects the depth, leaves out moving objects, downsamples globally into the
+// coarse world-voxel map and adds the static key objects - from the keyframe and its nearest
+// ordinary frames, at full resolution - into the fine map. Points are anchored to their
+// keyframe, so pose corrections move them (see AnchoredVoxelMap); Assemble gives the map with
+// the current poses.
+// Thread-safety: AddFrame, AddKeyFrame, Reset and Shutdown are called by the tracking thread;
+// Assemble and Stats from any thread. mutex_ guards the maps, anchors and statistics (held by
+// the dense thread while it inserts and compacts), moving_mutex_ the moving tracks; the
+// tracking thread never waits for mutex_. ring_ is touched by the tracking thread only. In
+// sequential mode each keyframe is integrated inside AddKeyFrame, so the map is the same from run
+// to run.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include "drvslam/core/bounded_queue.h"
+#include "drvslam/core/camera.h"
+#include "drvslam/core/timing.h"
+#include "drvslam/dense/anchored_voxel_map.h"
+#include "drvslam/dense/dense_frame.h"
+#include "drvslam/dense/dense_options.h"
+#include "drvslam/map/keyframe.h"
+
+namespace drvslam {
+
+struct DenseMapStats {
+  std::size_t frames = 0;              // frames handed over
+  std::size_t keyframes = 0;           // keyframes integrated
+  std::size_t enhancement_frames = 0;  // ordinary frames whose key objects were added
+  std::size_t background_points = 0;   // stored in the coarse map
+  std::size_t object_points = 0;       // stored in the fine map
+  std::size_t points = 0;              // background + object
+  std::size_t exported_points = 0;     // in the last Assemble (isolated and moving left out)
+  // Bytes the maps hold in memory (points and voxel index).
+  double memory_megabytes = 0.0;
+  // What a full-resolution map of the same keyframes would hold: every valid, non-excluded
+  // depth pixel of every keyframe.
+  std::size_t full_resolution_points = 0;
+  std::size_t resets = 0;
+  TimingSummary keyframe_ms;  // integration time per keyframe (dense thread)
+};
+
+// A keyframe's current T_wc; a keyframe that local mapping removed follows its parent.
+SE3 CurrentKeyFramePose(const KeyFrame& keyframe);
+
+class DenseMapper {
+ public:
+  // Throws Error on bad options. `timings` (may be null) receives "dense_keyframe" per keyframe.
+  DenseMapper(const CameraOptions& camera, const DenseMapOptions& options, bool sequential,
+              StageTimings* timings = nullptr);
+  ~DenseMapper();  // Shutdown
+  DenseMapper(const DenseMapper&) = delete;
+  DenseMapper& operator=(const DenseMapper&) = delete;
+
+  // An ordinary tracked frame, in time order. Objects judged moving are remembered (with
+  // sticky_moving they stay excluded later on). Both throw Error for a frame CheckDenseFrame
+  // rejects.
+  void AddFrame(DenseFrame frame);
+  // A new keyframe: `frame` is its image data (not also passed to AddFrame); `keyframe` is
+  // followed for pose corrections (null: the frame's pose is final).
+  void AddKeyFrame(DenseFrame frame, std::shared_ptr<const KeyFrame> keyframe);
+  // Tracking started a new map: everything mapped so far is dropped (in order with the queue).
+  void Reset();
+  // Integrates every queued keyframe and stops the thread; later keyframes are integrated on
+  // the caller's thread. Idempotent.
+  void Shutdown();
+
+  // The map in the world frame with the current keyframe poses: coarse points (isolated ones
+  // removed) then key-object points. Also compacts the stored maps.
+  DenseCloud Assemble();
+  DenseMapStats Stats() const;
+
+ private:
+  struct KeyFrameJob {
+    DenseFrame frame;
+    std::shared_ptr<const KeyFrame> keyframe;
+    std::vector<DenseFrame> neighbours;  // nearest ordinary frames
+  };
+  struct ResetJob {};
+  using Job = std::variant<KeyFrameJob, ResetJob>;
+
+  struct Anchor {
+    std::shared_ptr<const KeyFrame> keyframe;
+    SE3 T_wc;  // used when there is no keyframe
+  };
+
+  void Run();
+  void Process(Job job);
+  void Integrate(KeyFrameJob job);
+  void MarkMoving(DenseFrame* frame);
+  // Under mutex_.
+  std::vector<SE3> AnchorPoses() const;
+  void CompactLocked();
+
+  CameraOptions camera_;
+  DenseMapOptions options_;
+  bool sequential_;
+  StageTimings* timings_;
+
+  std::vector<DenseFrame> ring_;          // latest ordinary frames, oldest first (tracking thread)
+  std::set<int> moving_tracks_tracking_;  // tracking thread's copy
+
+  std::atomic<std::size_t> frames_{0};
+  mutable std::mutex moving_mutex_;
+  std::set<int> moving_tracks_;
+
+  mutable std::mutex mutex_;
+  AnchoredVoxelMap coarse_;
+  AnchoredVoxelMap fine_;
+  std::vector<Anchor> anchors_;
+  DenseMapStats stats_;
+  std::vector<double> keyframe_ms_;
+  std::size_t since_compaction_ = 0;
+
+  BoundedQueue<Job> queue_;
+  std::thread worker_;
+  bool stopped_ = false;  // tracking thread only
+};
+
+}  // namespace drvslam

@@ -1,0 +1,20 @@
+// DensePoint: one point of the dense map - position, colour, class label and the track of the
+// potentially-moving object it lies on - the unit every dense-mapping step passes around.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace drvslam {
+
+struct DensePoint {
+  Eigen::Vector3f position = Eigen::Vector3f::Zero();  // metres, in the frame its cloud names
+  uint8_t r = 0, g = 0, b = 0;
+  int16_t label = -1;  // segmenter class id; -1 = unlabelled background
+  int32_t track = -1;  // object ID of a still potentially-moving object; -1 = none
+};
+
+using DenseCloud = std::vector<DensePoint>;
+
+}  // namespace drvslam

@@ -1,0 +1,48 @@
+#include "drvslam/dense/dense_stats_json.h"
+
+namespace drvslam {
+
+nlohmann::json DenseStatsJson(const DenseMapStats& s) {
+  const double megabyte = 1024.0 * 1024.0;
+  nlohmann::json json;
+  json["frames"] = s.frames;
+  json["keyframes"] = s.keyframes;
+  json["enhancement_frames"] = s.enhancement_frames;
+  json["points"] = s.points;
+  json["background_points"] = s.background_points;
+  json["object_points"] = s.object_points;
+  json["exported_points"] = s.exported_points;
+  json["megabytes"] = s.exported_points * kPlyBytesPerPoint / megabyte;
+  json["memory_megabytes"] = s.memory_megabytes;
+  json["full_resolution_points"] = s.full_resolution_points;
+  json["full_resolution_megabytes"] = s.full_resolution_points * kPlyBytesPerPoint / megabyte;
+  json["reduction"] = s.full_resolution_points > 0
+                          ? 1.0 - static_cast<double>(s.exported_points) / s.full_resolution_points
+                          : 0.0;
+  json["resets"] = s.resets;
+  json["keyframe_ms"] = {{"median", s.keyframe_ms.median_ms},
+                         {"p95", s.keyframe_ms.p95_ms},
+                         {"mean", s.keyframe_ms.mean_ms},
+                         {"max", s.keyframe_ms.max_ms},
+                         {"count", s.keyframe_ms.count}};
+  return json;
+}
+
+nlohmann::json DenseTruthScoresJson(const DenseTruthScores& s) {
+  nlohmann::json json;
+  json["points"] = s.points;
+  json["ghosts"] = s.ghosts;
+  json["ghost_share"] = s.ghost_share;
+  json["distance"] = {{"mean", s.mean_distance},
+                      {"median", s.median_distance},
+                      {"p95", s.p95_distance},
+                      {"static_mean", s.static_mean_distance},
+                      {"static_p95", s.static_p95_distance}};
+  json["key_object_points"] = s.key_object_points;
+  json["background_points"] = s.background_points;
+  json["key_object_density"] = s.key_object_density;
+  json["background_density"] = s.background_density;
+  return json;
+}
+
+}  // namespace drvslam

@@ -1,0 +1,26 @@
+// The dense mapping thread's numbers as JSON: the "dense" block of stats.json and the output
+// of `drvslam dense-eval --json`.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "drvslam/dense/dense_mapper.h"
+#include "drvslam/dense/dense_truth.h"
+
+namespace drvslam {
+
+// {"frames", "keyframes", "enhancement_frames", "points", "background_points", "object_points",
+//  "exported_points", "megabytes" (exported points as binary PLY records), "memory_megabytes",
+//  "full_resolution_points", "full_resolution_megabytes", "reduction" (1 - exported / full),
+//  "resets", "keyframe_ms": {"median", "p95", "mean", "max", "count"}}
+nlohmann::json DenseStatsJson(const DenseMapStats& stats);
+
+// {"points", "ghosts", "ghost_share", "distance": {"mean", "median", "p95", "static_mean",
+//  "static_p95"}, "key_object_points", "background_points", "key_object_density",
+//  "background_density"}
+nlohmann::json DenseTruthScoresJson(const DenseTruthScores& scores);
+
+// Bytes of one point in dense_map.ply (x y z float, r g b uchar, label short).
+inline constexpr double kPlyBytesPerPoint = 17.0;
+
+}  // namespace drvslam

@@ -1,0 +1,80 @@
+// Dense-map accuracy against synthetic ground truth (the acceptance measures of the dense
+// mapping thread): ghosts - map points in space that actors swept through - and the distance
+// of map points to the true static surfaces, plus the point density on key objects against the
+// background. Geometry comes from the SynthSequence the dataset was generated from, rebuilt
+// from the Synth.* keys of its settings.yaml.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "drvslam/core/settings_file.h"
+#include "drvslam/dense/dense_point.h"
+#include "drvslam/io/trajectory_io.h"
+#include "drvslam/synth/scene.h"
+#include "drvslam/synth/synth_options.h"
+#include "drvslam/synth/synth_sequence.h"
+
+namespace drvslam {
+
+struct DenseTruthOptions {
+  // A point within ghost_margin of an actor's surface at some frame, and farther than that
+  // from every static surface, is a ghost (metres).
+  double ghost_margin = 0.05;
+  // Distances to the static scene are capped here (metres).
+  double max_distance = 0.25;
+  // Density is counted as points per occupied cube of this edge (metres).
+  double density_cell = 0.05;
+  // Actor geometry is taken at every n-th frame (1 = all).
+  int actor_frame_stride = 1;
+};
+
+struct DenseTruthScores {
+  std::size_t points = 0;
+  std::size_t ghosts = 0;
+  double ghost_share = 0.0;
+  // Distance to the nearest static surface (capped at max_distance).
+  double mean_distance = 0.0;
+  double median_distance = 0.0;
+  double p95_distance = 0.0;
+  // The same over the points that are not ghosts.
+  double static_mean_distance = 0.0;
+  double static_p95_distance = 0.0;
+  std::size_t key_object_points = 0;  // labelled with a key-object class
+  std::size_t background_points = 0;
+  double key_object_density = 0.0;  // points per occupied density cell
+  double background_density = 0.0;
+};
+
+// Scores world points (in the ground-truth frame). `key_labels`: class ids of key objects.
+DenseTruthScores ScoreDenseCloud(const DenseCloud& cloud, const synth::TriangleList& static_scene,
+                                 const synth::TriangleList& actors_swept,
+                                 const std::set<int>& key_labels, const DenseTruthOptions& options);
+
+// Every actor triangle of `sequence` at every stride-th frame of the first `frames` (0 = all).
+synth::TriangleList SweptActorGeometry(const synth::SynthSequence& sequence, int stride,
+                                       int frames = 0);
+// COCO ids of the sequence's static key objects.
+std::set<int> KeyObjectLabels(const synth::SynthSequence& sequence);
+
+// The options a dataset was generated with, from the Synth.* and Camera.* keys of its
+// settings.yaml, with procedural textures (geometry does not depend on them). Throws Error
+// naming the file when it was not written by `drvslam synth`.
+synth::SynthOptions SynthOptionsFromSettings(const SettingsFile& file);
+
+// Shortest distance from p to the triangle (a, b, c).
+double PointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                             const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+// Rigidly aligns `estimate` (camera poses T_wc) onto `truth` by matching stamps within
+// max_difference seconds - positions and orientations, through each camera's centre and axis
+// tips - and maps the cloud into the ground-truth frame. Throws Error when fewer than 3 poses
+// match.
+DenseCloud AlignCloudToTruth(const DenseCloud& cloud, const Trajectory& estimate,
+                             const Trajectory& truth, double max_difference = 0.02);
+
+// The scores as lines of text, for the CLI.
+std::string FormatDenseTruthScores(const DenseTruthScores& scores);
+
+}  // namespace drvslam

@@ -1,0 +1,141 @@
+#include "drvslam/match/bow_matcher.h"
+
+#include "drvslam/feature/descriptor_distance.h"
+#include "drvslam/match/rotation_consistency.h"
+
+namespace drvslam {
+namespace {
+
+// Walks two direct indexes in node order and calls visit(indices1, indices2) for every node
+// both hold; lower_bound jumps make it cheap when one side is much sparser.
+template <typename Visit>
+void ForEachSharedNode(const FeatureVector& a, const FeatureVector& b, Visit visit) {
+  auto it_a = a.begin();
+  auto it_b = b.begin();
+  while (it_a != a.end() && it_b != b.end()) {
+    if (it_a->first == it_b->first) {
+      visit(it_a->second, it_b->second);
+      ++it_a;
+      ++it_b;
+    } else if (it_a->first < it_b->first) {
+      it_a = a.lower_bound(it_b->first);
+    } else {
+      it_b = b.lower_bound(it_a->first);
+    }
+  }
+}
+
+const uint8_t* Row(const cv::Mat& descriptors, unsigned index) {
+  return descriptors.ptr<uint8_t>(static_cast<int>(index));
+}
+
+// Drops the matches (slot indices) outside the dominant rotation bins.
+int RejectRotations(const RotationConsistency& rotations,
+                    std::vector<std::shared_ptr<MapPoint>>* matches, int count) {
+  for (const int slot : rotations.Rejected()) {
+    (*matches)[slot].reset();
+    --count;
+  }
+  return count;
+}
+
+}  // namespace
+
+int SearchByBow(const KeyFrame& keyframe, const Frame& frame, const BowMatchOptions& options,
+                std::vector<std::shared_ptr<MapPoint>>* matches) {
+  matches->assign(frame.Size(), nullptr);
+  if (!keyframe.HasBow() || !frame.has_bow) return 0;
+  const auto points = keyframe.MapPoints();
+  const FrameFeatures& kf_features = keyframe.Features();
+  const FrameFeatures& features = frame.Features();
+  const cv::Mat& kf_descriptors = kf_features.Descriptors();
+  const cv::Mat& descriptors = features.Descriptors();
+  RotationConsistency rotations;
+  int count = 0;
+  ForEachSharedNode(
+      keyframe.BowFeatures(), frame.bow_features,
+      [&](const std::vector<unsigned>& kf_indices, const std::vector<unsigned>& frame_indices) {
+        for (const unsigned i : kf_indices) {
+          const auto& point = points[i];
+          if (!point || point->IsBad()) continue;
+          const uint8_t* descriptor = Row(kf_descriptors, i);
+          int best = 256, second = 256, best_index = -1;
+          for (const unsigned j : frame_indices) {
+            if ((*matches)[j]) continue;
+            const int distance = DescriptorDistance(descriptor, Row(descriptors, j));
+            if (distance < best) {
+              second = best;
+              best = distance;
+              best_index = static_cast<int>(j);
+            } else if (distance < second) {
+              second = distance;
+            }
+          }
+          if (best_index < 0 || best > options.max_distance || best >= options.nn_ratio * second) {
+            continue;
+          }
+          (*matches)[best_index] = point;
+          ++count;
+          if (options.check_orientation) {
+            rotations.Add(
+                kf_features.KeypointsUn()[i].angle - features.KeypointsUn()[best_index].angle,
+                best_index);
+          }
+        }
+      });
+  if (options.check_orientation) count = RejectRotations(rotations, matches, count);
+  return count;
+}
+
+int SearchByBow(const KeyFrame& kf1, const KeyFrame& kf2, const BowMatchOptions& options,
+                std::vector<std::shared_ptr<MapPoint>>* matches12) {
+  const FrameFeatures& features1 = kf1.Features();
+  const FrameFeatures& features2 = kf2.Features();
+  matches12->assign(features1.Size(), nullptr);
+  if (!kf1.HasBow() || !kf2.HasBow()) return 0;
+  const auto points1 = kf1.MapPoints();
+  const auto points2 = kf2.MapPoints();
+  const cv::Mat& descriptors1 = features1.Descriptors();
+  const cv::Mat& descriptors2 = features2.Descriptors();
+  std::vector<bool> taken2(features2.Size(), false);
+  RotationConsistency rotations;
+  int count = 0;
+  ForEachSharedNode(
+      kf1.BowFeatures(), kf2.BowFeatures(),
+      [&](const std::vector<unsigned>& indices1, const std::vector<unsigned>& indices2) {
+        for (const unsigned i : indices1) {
+          const auto& point1 = points1[i];
+          if (!point1 || point1->IsBad()) continue;
+          const uint8_t* descriptor = Row(descriptors1, i);
+          int best = 256, second = 256, best_index = -1;
+          for (const unsigned j : indices2) {
+            if (taken2[j]) continue;
+            const auto& point2 = points2[j];
+            if (!point2 || point2->IsBad()) continue;
+            const int distance = DescriptorDistance(descriptor, Row(descriptors2, j));
+            if (distance < best) {
+              second = best;
+              best = distance;
+              best_index = static_cast<int>(j);
+            } else if (distance < second) {
+              second = distance;
+            }
+          }
+          if (best_index < 0 || best > options.max_distance || best >= options.nn_ratio * second) {
+            continue;
+          }
+          (*matches12)[i] = points2[best_index];
+          taken2[best_index] = true;
+          ++count;
+          if (options.check_orientation) {
+            rotations.Add(
+                features1.KeypointsUn()[i].angle - features2.KeypointsUn()[best_index].angle,
+                static_cast<int>(i));
+          }
+        }
+      });
+  if (options.check_orientation) count = RejectRotations(rotations, matches12, count);
+  return count;
+}
+
+}  // namespace drvslam
