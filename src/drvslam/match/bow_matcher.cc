@@ -1,6 +1,7 @@
 #include "drvslam/match/bow_matcher.h"
 
 #include "drvslam/feature/descriptor_distance.h"
+#include "drvslam/match/nearest_two.h"
 #include "drvslam/match/rotation_consistency.h"
 
 namespace drvslam {
@@ -59,27 +60,21 @@ int SearchByBow(const KeyFrame& keyframe, const Frame& frame, const BowMatchOpti
           const auto& point = points[i];
           if (!point || point->IsBad()) continue;
           const uint8_t* descriptor = Row(kf_descriptors, i);
-          int best = 256, second = 256, best_index = -1;
+          NearestTwo nearest;
           for (const unsigned j : frame_indices) {
             if ((*matches)[j]) continue;
-            const int distance = DescriptorDistance(descriptor, Row(descriptors, j));
-            if (distance < best) {
-              second = best;
-              best = distance;
-              best_index = static_cast<int>(j);
-            } else if (distance < second) {
-              second = distance;
-            }
+            nearest.Offer(DescriptorDistance(descriptor, Row(descriptors, j)), static_cast<int>(j));
           }
-          if (best_index < 0 || best > options.max_distance || best >= options.nn_ratio * second) {
+          if (nearest.index < 0 || nearest.best > options.max_distance ||
+              nearest.best >= options.nn_ratio * nearest.second) {
             continue;
           }
-          (*matches)[best_index] = point;
+          (*matches)[nearest.index] = point;
           ++count;
           if (options.check_orientation) {
             rotations.Add(
-                kf_features.KeypointsUn()[i].angle - features.KeypointsUn()[best_index].angle,
-                best_index);
+                kf_features.KeypointsUn()[i].angle - features.KeypointsUn()[nearest.index].angle,
+                nearest.index);
           }
         }
       });
@@ -107,29 +102,24 @@ int SearchByBow(const KeyFrame& kf1, const KeyFrame& kf2, const BowMatchOptions&
           const auto& point1 = points1[i];
           if (!point1 || point1->IsBad()) continue;
           const uint8_t* descriptor = Row(descriptors1, i);
-          int best = 256, second = 256, best_index = -1;
+          NearestTwo nearest;
           for (const unsigned j : indices2) {
             if (taken2[j]) continue;
             const auto& point2 = points2[j];
             if (!point2 || point2->IsBad()) continue;
-            const int distance = DescriptorDistance(descriptor, Row(descriptors2, j));
-            if (distance < best) {
-              second = best;
-              best = distance;
-              best_index = static_cast<int>(j);
-            } else if (distance < second) {
-              second = distance;
-            }
+            nearest.Offer(DescriptorDistance(descriptor, Row(descriptors2, j)),
+                          static_cast<int>(j));
           }
-          if (best_index < 0 || best > options.max_distance || best >= options.nn_ratio * second) {
+          if (nearest.index < 0 || nearest.best > options.max_distance ||
+              nearest.best >= options.nn_ratio * nearest.second) {
             continue;
           }
-          (*matches12)[i] = points2[best_index];
-          taken2[best_index] = true;
+          (*matches12)[i] = points2[nearest.index];
+          taken2[nearest.index] = true;
           ++count;
           if (options.check_orientation) {
             rotations.Add(
-                features1.KeypointsUn()[i].angle - features2.KeypointsUn()[best_index].angle,
+                features1.KeypointsUn()[i].angle - features2.KeypointsUn()[nearest.index].angle,
                 static_cast<int>(i));
           }
         }

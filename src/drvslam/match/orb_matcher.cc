@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "drvslam/feature/descriptor_distance.h"
+#include "drvslam/match/nearest_two.h"
 #include "drvslam/match/rotation_consistency.h"
 
 namespace drvslam {
@@ -144,21 +145,16 @@ int OrbMatcher::SearchByDescriptors(const KeyFrame& keyframe, Frame& current, do
     const auto& point = points[i];
     if (!point || point->IsBad()) continue;
     const cv::Mat descriptor = kf_features.Descriptor(i);
-    int best = 256, second = 256, best_index = -1;
+    NearestTwo nearest;
     for (std::size_t j = 0; j < current.Size(); ++j) {
-      const int distance = DescriptorDistance(descriptor, features.Descriptor(j));
-      if (distance < best) {
-        second = best;
-        best = distance;
-        best_index = static_cast<int>(j);
-      } else if (distance < second) {
-        second = distance;
-      }
+      nearest.Offer(DescriptorDistance(descriptor, features.Descriptor(j)), static_cast<int>(j));
     }
-    if (best_index < 0 || best > options_.low_threshold || best > ratio * second) continue;
-    if (best < best_for_keypoint[best_index]) {
-      best_for_keypoint[best_index] = best;
-      source_for_keypoint[best_index] = static_cast<int>(i);
+    if (nearest.index < 0 || nearest.best > options_.low_threshold ||
+        nearest.best > ratio * nearest.second)
+      continue;
+    if (nearest.best < best_for_keypoint[nearest.index]) {
+      best_for_keypoint[nearest.index] = nearest.best;
+      source_for_keypoint[nearest.index] = static_cast<int>(i);
     }
   }
   RotationConsistency rotations;
