@@ -8,6 +8,7 @@
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/optim/rigid_transform_ransac.h"
+#include "drvslam/tracking/pose_observations.h"
 
 namespace drvslam {
 namespace {
@@ -39,18 +40,7 @@ SE3 RefinePose(const KeyFrame& keyframe, const SE3& T_cw,
   const ScalePyramid& pyramid = keyframe.Geometry().pyramid;
   std::vector<PoseObservation> observations;
   std::vector<std::size_t> slots;
-  for (std::size_t i = 0; i < matches->size(); ++i) {
-    const auto& point = (*matches)[i];
-    if (!point) continue;
-    const cv::KeyPoint& kp = features.KeypointsUn()[i];
-    PoseObservation observation;
-    observation.point_w = point->Position();
-    observation.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-    observation.right_u = features.RightU(i);
-    observation.inv_sigma2 = pyramid.inv_sigma2[kp.octave];
-    observations.push_back(observation);
-    slots.push_back(i);
-  }
+  GatherPoseObservations(features, pyramid, *matches, &observations, &slots);
   if (observations.size() < 3) return T_cw;
   const PoseOptimizationResult result =
       OptimizePose(keyframe.Geometry().camera.Options(), T_cw, observations);

@@ -12,6 +12,7 @@
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/keyframe_projection.h"
 #include "drvslam/optim/pose_optimizer.h"
+#include "drvslam/tracking/pose_observations.h"
 
 namespace drvslam {
 namespace {
@@ -144,18 +145,7 @@ int Relocalizer::OptimizeFramePose(Frame& frame) const {
   std::vector<std::size_t> slots;
   const FrameFeatures& features = frame.Features();
   const ScalePyramid& pyramid = frame.Geometry().pyramid;
-  for (std::size_t i = 0; i < frame.Size(); ++i) {
-    const auto& point = frame.map_points[i];
-    if (!point) continue;
-    const cv::KeyPoint& kp = features.KeypointsUn()[i];
-    PoseObservation observation;
-    observation.point_w = point->Position();
-    observation.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-    observation.right_u = features.RightU(i);
-    observation.inv_sigma2 = pyramid.inv_sigma2[kp.octave];
-    observations.push_back(observation);
-    slots.push_back(i);
-  }
+  GatherPoseObservations(features, pyramid, frame.map_points, &observations, &slots);
   if (observations.size() < 3) return 0;
   const PoseOptimizationResult result =
       OptimizePose(frame.Geometry().camera.Options(), frame.Pose(), observations);

@@ -8,6 +8,7 @@
 #include "drvslam/tracking/keyframe_factory.h"
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/observation_weight.h"
+#include "drvslam/tracking/pose_observations.h"
 
 namespace drvslam {
 namespace {
@@ -243,18 +244,8 @@ int Tracker::OptimizeCurrentPose() {
   std::vector<PoseObservation> observations;
   std::vector<std::size_t> slots;
   const FrameFeatures& features = current_->Features();
-  for (std::size_t i = 0; i < current_->Size(); ++i) {
-    const auto& point = current_->map_points[i];
-    if (!point) continue;
-    const cv::KeyPoint& kp = features.KeypointsUn()[i];
-    PoseObservation observation;
-    observation.point_w = point->Position();
-    observation.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-    observation.right_u = features.RightU(i);
-    observation.inv_sigma2 = current_->Geometry().pyramid.inv_sigma2[kp.octave];
-    observations.push_back(observation);
-    slots.push_back(i);
-  }
+  GatherPoseObservations(features, current_->Geometry().pyramid, current_->map_points,
+                         &observations, &slots);
   if (observations.size() < 3) return 0;
   const PoseOptimizationResult result = OptimizePose(current_->Geometry().camera.Options(),
                                                      current_->Pose(), observations, pose_options_);
