@@ -15,6 +15,8 @@ function(drvslam_test name)
   cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_compile_options(${name} PRIVATE -Wall -Wextra)
+  # Shared test helpers (tests/test_support/) are included as "test_support/...".
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_compile_definitions(${name} PRIVATE
     DRVSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     DRVSLAM_SHARED_DIR="${DRVSLAM_SHARED_DIR}"

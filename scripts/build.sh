@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Configures and builds drvslam (Release) into build/. Extra arguments go to cmake --build.
+# Configures and builds drvslam (Release) into build/. Extra arguments go to cmake --build
+# (for example `--target drvslam_cli`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh

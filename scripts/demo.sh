@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs dependencies, builds, and runs the embedded default demo (no download needed):
+# Installs dependencies, builds the CLI, and runs the embedded default demo (no download needed):
 # results and a report land in demo_out/ unless another folder is given.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh drvslam_cli
+bash scripts/build.sh --target drvslam_cli
 ./build/bin/drvslam demo --out "${1:-demo_out}"

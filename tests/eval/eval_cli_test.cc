@@ -12,6 +12,7 @@
 #include <string>
 
 #include "drvslam/io/trajectory_io.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -39,7 +40,7 @@ CliRun RunCli(const std::string& arguments) {
 class EvalCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(DRVSLAM_CLI)) GTEST_SKIP() << "CLI not built at " << DRVSLAM_CLI;
+    if (!fs::exists(DRVSLAM_CLI)) DRVSLAM_MISSING_TEST_DATA() << "CLI not built at " << DRVSLAM_CLI;
     dir_ = fs::temp_directory_path() / ("drvslam_eval_cli_" + std::to_string(getpid()));
     fs::create_directories(dir_);
     Trajectory gt, est;

@@ -10,6 +10,7 @@
 #include "drvslam/eval/ate.h"
 #include "drvslam/eval/rpe.h"
 #include "eval_test_util.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -29,7 +30,8 @@ class RealTrajectoryTest : public ::testing::TestWithParam<const char*> {
  protected:
   void SetUp() override {
     const std::string path = GroundTruthPath(GetParam());
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing shared data file " << path;
+    if (!std::filesystem::exists(path))
+      DRVSLAM_MISSING_TEST_DATA() << "missing shared data file " << path;
     gt_ = ReadTumTrajectory(path);
   }
   Trajectory gt_;

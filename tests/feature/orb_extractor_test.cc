@@ -11,6 +11,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/feature/descriptor_distance.h"
 #include "test_images.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -44,8 +45,8 @@ class PhotoTest : public ::testing::TestWithParam<const char*> {
   void SetUp() override {
     gray_ = test::LoadPhoto640(GetParam());
     if (gray_.empty()) {
-      GTEST_SKIP() << DRVSLAM_OPENCV_DATA_DIR << "/" << GetParam()
-                   << " not found (install opencv-doc)";
+      DRVSLAM_MISSING_TEST_DATA() << DRVSLAM_OPENCV_DATA_DIR << "/" << GetParam()
+                                  << " not found (install opencv-doc)";
     }
   }
   cv::Mat gray_;

@@ -14,6 +14,7 @@
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/sequence_runner.h"
 #include "synthesized_sequence.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -85,7 +86,8 @@ fs::path LoopClosingTest::root_;
 
 TEST_F(LoopClosingTest, RevisitIsDetectedAndCorrectionReducesDrift) {
   const RunSummary with_loop = Run("on", "on");
-  if (!with_loop.stats.loop) GTEST_SKIP() << "no bag-of-words vocabulary in this build";
+  if (!with_loop.stats.loop)
+    DRVSLAM_MISSING_TEST_DATA() << "no bag-of-words vocabulary in this build";
   EXPECT_EQ(with_loop.stats.tracked, kFrames);
   const LoopClosingStats& loop = *with_loop.stats.loop;
   // Local mapping handed over every keyframe it finished.
@@ -112,7 +114,8 @@ TEST_F(LoopClosingTest, RevisitIsDetectedAndCorrectionReducesDrift) {
 
 TEST_F(LoopClosingTest, NoLoopWithoutRevisit) {
   const RunSummary summary = Run("partial", "on", kNonRevisitingFrames);
-  if (!summary.stats.loop) GTEST_SKIP() << "no bag-of-words vocabulary in this build";
+  if (!summary.stats.loop)
+    DRVSLAM_MISSING_TEST_DATA() << "no bag-of-words vocabulary in this build";
   EXPECT_EQ(summary.stats.tracked, kNonRevisitingFrames);
   EXPECT_GT(summary.stats.loop->keyframes_processed, 10);
   EXPECT_EQ(summary.stats.loop->corrections, 0);
@@ -120,7 +123,7 @@ TEST_F(LoopClosingTest, NoLoopWithoutRevisit) {
 
 TEST_F(LoopClosingTest, SequentialLoopClosingIsBitIdentical) {
   const RunSummary a = Run("a", "on");
-  if (!a.stats.loop) GTEST_SKIP() << "no bag-of-words vocabulary in this build";
+  if (!a.stats.loop) DRVSLAM_MISSING_TEST_DATA() << "no bag-of-words vocabulary in this build";
   Run("b", "on");
   const std::string trajectory = test::ReadFile(root_ / "a" / "CameraTrajectory.txt");
   ASSERT_FALSE(trajectory.empty());
@@ -129,7 +132,8 @@ TEST_F(LoopClosingTest, SequentialLoopClosingIsBitIdentical) {
 
 TEST_F(LoopClosingTest, ThreadedLoopClosingFindsTheLoop) {
   const RunSummary summary = Run("threaded", "on", 0, /*sequential=*/false);
-  if (!summary.stats.loop) GTEST_SKIP() << "no bag-of-words vocabulary in this build";
+  if (!summary.stats.loop)
+    DRVSLAM_MISSING_TEST_DATA() << "no bag-of-words vocabulary in this build";
   // Under load, the frame tracked while a threaded correction rewrites the map can be lost (seen
   // in 3 of 9 runs at load 6; relocalization recovers on the next frame): at most 1 %.
   EXPECT_GE(summary.stats.tracked, kFrames * 99 / 100);

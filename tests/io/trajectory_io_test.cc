@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -229,7 +230,7 @@ TEST_F(TrajectoryIoTest, RejectsAMissingFile) {
 
 TEST(TumGroundTruthTest, ReadsTheRealGroundTruthFiles) {
   const fs::path root = fs::path(DRVSLAM_SHARED_DIR) / "tum-groundtruth";
-  if (!fs::is_directory(root)) GTEST_SKIP() << root << " is missing";
+  if (!fs::is_directory(root)) DRVSLAM_MISSING_TEST_DATA() << root << " is missing";
   int files = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(root)) {
     const fs::path path = entry.path() / "groundtruth.txt";
@@ -260,7 +261,7 @@ TEST(TumGroundTruthTest, ReadsTheRealGroundTruthFiles) {
     EXPECT_GT(duration, 10.0);
     EXPECT_LT(duration, 300.0);
   }
-  if (files == 0) GTEST_SKIP() << "no groundtruth.txt under " << root;
+  if (files == 0) DRVSLAM_MISSING_TEST_DATA() << "no groundtruth.txt under " << root;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "drvslam/map/map_point.h"
 #include "plane_views.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -17,9 +18,10 @@ namespace {
 class BowMatcherTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!scene_.LoadVocabulary()) GTEST_SKIP() << "no default vocabulary was built";
+    if (!scene_.LoadVocabulary()) DRVSLAM_MISSING_TEST_DATA() << "no default vocabulary was built";
     photo_ = test::LoadPhoto("graf1.png");
-    if (photo_.empty()) GTEST_SKIP() << "graf1.png missing in " << DRVSLAM_OPENCV_DATA_DIR;
+    if (photo_.empty())
+      DRVSLAM_MISSING_TEST_DATA() << "graf1.png missing in " << DRVSLAM_OPENCV_DATA_DIR;
     keyframe_ = scene_.MakeKeyFrame(photo_, SE3::Identity());
     ASSERT_TRUE(keyframe_);
   }

@@ -8,6 +8,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/loop/vocabulary_io.h"
+#include "test_support/missing_data.h"
 #include "vocabulary_test_util.h"
 
 namespace drvslam {
@@ -44,7 +45,7 @@ TEST(DefaultVocabularyTest, TheBuildTrainedOneLoads) {
   unsetenv(kDefaultVocabularyEnvironment);
   if (DefaultVocabularyPath().empty()) {
     EXPECT_THROW(LoadDefaultVocabulary(), Error);
-    GTEST_SKIP() << "no default vocabulary was built (opencv-doc images missing?)";
+    DRVSLAM_MISSING_TEST_DATA() << "no default vocabulary was built (opencv-doc images missing?)";
   }
   const BowVocabulary vocabulary = LoadDefaultVocabulary();
   EXPECT_EQ(vocabulary.BranchingFactor(), 10);

@@ -12,6 +12,7 @@
 
 #include "drvslam/loop/bow_vocabulary.h"
 #include "plane_views.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -23,10 +24,11 @@ const std::vector<std::string> kPlaces = {"baboon.jpg",       "fruits.jpg", "bui
 class KeyFrameDatabaseTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!scene_.LoadVocabulary()) GTEST_SKIP() << "no default vocabulary was built";
+    if (!scene_.LoadVocabulary()) DRVSLAM_MISSING_TEST_DATA() << "no default vocabulary was built";
     for (const std::string& name : kPlaces) {
       const cv::Mat photo = test::LoadPhoto(name);
-      if (photo.empty()) GTEST_SKIP() << name << " missing in " << DRVSLAM_OPENCV_DATA_DIR;
+      if (photo.empty())
+        DRVSLAM_MISSING_TEST_DATA() << name << " missing in " << DRVSLAM_OPENCV_DATA_DIR;
       photos_.push_back(photo);
       keyframes_.push_back(scene_.MakeKeyFrame(photo, SE3::Identity()));
       ASSERT_TRUE(keyframes_.back());

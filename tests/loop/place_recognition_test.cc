@@ -12,6 +12,7 @@
 #include "drvslam/loop/place_recognition_eval.h"
 #include "drvslam/loop/training_images.h"
 #include "drvslam/loop/vocabulary_trainer.h"
+#include "test_support/missing_data.h"
 #include "vocabulary_test_util.h"
 
 namespace drvslam {
@@ -42,7 +43,7 @@ TEST(PlaceRecognitionTest, TransformedViewScoresHighestAgainstItsOriginal) {
   const std::vector<std::string> training = Photos(kTrainingNames);
   const std::vector<std::string> database = Photos(kDatabaseNames);
   if (training.size() < 10 || database.size() < 8) {
-    GTEST_SKIP() << "opencv-doc photographs missing in " << DRVSLAM_OPENCV_DATA_DIR;
+    DRVSLAM_MISSING_TEST_DATA() << "opencv-doc photographs missing in " << DRVSLAM_OPENCV_DATA_DIR;
   }
   ImageVocabularyOptions options;
   options.tree.branching_factor = 10;

@@ -12,6 +12,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/map/map_point.h"
 #include "plane_views.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -19,10 +20,11 @@ namespace {
 class RelocalizerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!scene_.LoadVocabulary()) GTEST_SKIP() << "no default vocabulary was built";
+    if (!scene_.LoadVocabulary()) DRVSLAM_MISSING_TEST_DATA() << "no default vocabulary was built";
     for (const std::string name : {"graf1.png", "home.jpg", "fruits.jpg", "baboon.jpg"}) {
       const cv::Mat photo = test::LoadPhoto(name);
-      if (photo.empty()) GTEST_SKIP() << name << " missing in " << DRVSLAM_OPENCV_DATA_DIR;
+      if (photo.empty())
+        DRVSLAM_MISSING_TEST_DATA() << name << " missing in " << DRVSLAM_OPENCV_DATA_DIR;
       photos_.push_back(photo);
     }
     // The map: each place seen by one keyframe. Photo 3 (baboon) stays out of it.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
+#include "test_support/missing_data.h"
 #include "vocabulary_test_util.h"
 
 namespace drvslam {
@@ -53,7 +54,7 @@ TEST(TrainingImagesTest, ImagesAreGrayAndShrunkToMaxSide) {
 
 TEST(TrainingImagesTest, VideosGiveEveryNthFrame) {
   const std::string video = std::string(DRVSLAM_OPENCV_DATA_DIR) + "/vtest.avi";
-  if (!std::filesystem::is_regular_file(video)) GTEST_SKIP() << video << " missing";
+  if (!std::filesystem::is_regular_file(video)) DRVSLAM_MISSING_TEST_DATA() << video << " missing";
   TrainingImageOptions options;
   options.video_step = 200;
   const std::vector<TrainingImageSource> sources = ListTrainingImages({video}, options);

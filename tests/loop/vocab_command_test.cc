@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "test_support/missing_data.h"
 #include "vocabulary_test_util.h"
 
 namespace drvslam {
@@ -46,7 +47,7 @@ class VocabCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!std::filesystem::is_regular_file(DRVSLAM_CLI)) {
-      GTEST_SKIP() << "CLI not built: " << DRVSLAM_CLI;
+      DRVSLAM_MISSING_TEST_DATA() << "CLI not built: " << DRVSLAM_CLI;
     }
   }
 };

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <string>
 
+#include "test_support/missing_data.h"
+
 namespace drvslam::testing {
 
 inline std::string ExistingOrEmpty(const std::string& path) {
@@ -35,7 +37,8 @@ inline std::filesystem::path FreshTempDir(const std::string& name) {
 }  // namespace drvslam::testing
 
 // Skips the current test when `path` is empty, naming what is missing.
-#define DRVSLAM_SKIP_IF_MISSING(path, what)                                                    \
-  do {                                                                                         \
-    if ((path).empty()) GTEST_SKIP() << what << " not found; skipping (see shared/README.md)"; \
+#define DRVSLAM_SKIP_IF_MISSING(path, what)                                       \
+  do {                                                                            \
+    if ((path).empty())                                                           \
+      DRVSLAM_MISSING_TEST_DATA() << what << " not found (see shared/README.md)"; \
   } while (0)

@@ -14,6 +14,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/semantic/mask_propagator.h"
 #include "test_data.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -76,7 +77,8 @@ class Photos {
 
 #define REQUIRE_INPUTS(model, image)                           \
   DRVSLAM_SKIP_IF_MISSING(testing::SharedModel(model), model); \
-  if (Photos::Get().Image(image).empty()) GTEST_SKIP() << image << " not found (opencv-doc)"
+  if (Photos::Get().Image(image).empty())                      \
+  DRVSLAM_MISSING_TEST_DATA() << image << " not found (opencv-doc)"
 
 std::vector<const Instance*> ConfidentPersons(const Segmentation& seg, float min_score) {
   std::vector<const Instance*> persons;

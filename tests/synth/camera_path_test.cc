@@ -7,6 +7,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/io/trajectory_io.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam::synth {
 namespace {
@@ -160,7 +161,7 @@ TEST(CameraPathTest, LongTumRecordingStaysInsideTheGrownRoom) {
   const std::string file = std::string(DRVSLAM_SHARED_DIR) +
                            "/tum-groundtruth/rgbd_dataset_freiburg3_long_office_household/"
                            "groundtruth.txt";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "missing " << file;
+  if (!std::filesystem::exists(file)) DRVSLAM_MISSING_TEST_DATA() << "missing " << file;
   const CameraPath path = CameraPath::Replay(ReadTumTrajectory(file), ViewAnchor());
   EXPECT_NEAR(path.Duration(), 87.09, 0.1);
   std::vector<Eigen::Vector3d> centres;

@@ -18,6 +18,7 @@
 #include "drvslam/synth/sequence_writer.h"
 #include "drvslam/synth/synth_generator.h"
 #include "test_folder.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam::synth {
 namespace {
@@ -421,7 +422,7 @@ TEST(SynthSequenceTest, BillboardsCutOutTheirTransparentPart) {
 TEST(SynthSequenceTest, ReplaysATumRecording) {
   const std::string file = std::string(DRVSLAM_SHARED_DIR) +
                            "/tum-groundtruth/rgbd_dataset_freiburg3_walking_xyz/groundtruth.txt";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "missing " << file;
+  if (!std::filesystem::exists(file)) DRVSLAM_MISSING_TEST_DATA() << "missing " << file;
   SynthOptions options = SmallOptions("walking_xyz", 12, 160, 120);
   options.trajectory = file;
   const SynthSequence sequence(options);

@@ -11,6 +11,7 @@
 #include "drvslam/synth/photo_library.h"
 #include "drvslam/synth/texture_painter.h"
 #include "test_folder.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam::synth {
 namespace {
@@ -143,7 +144,8 @@ TEST(PhotoLibraryTest, FolderErrorsNameTheProblem) {
 
 TEST(PhotoLibraryTest, OpenCvSamplesWhenInstalled) {
   const PhotoLibrary library = PhotoLibrary::OpenCvSamples(DRVSLAM_OPENCV_DATA_DIR);
-  if (library.Empty()) GTEST_SKIP() << "no opencv-doc photos in " << DRVSLAM_OPENCV_DATA_DIR;
+  if (library.Empty())
+    DRVSLAM_MISSING_TEST_DATA() << "no opencv-doc photos in " << DRVSLAM_OPENCV_DATA_DIR;
   EXPECT_GE(library.Size(), 10);
   for (const std::string& name : library.Names()) {
     EXPECT_NE(name, "messi5.jpg");  // people stay off the walls
