@@ -18,6 +18,13 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   const double ratio = s.frames > 0 ? 100.0 * s.tracked / s.frames : 0.0;
   std::printf("settings:    %s\n", summary.settings_source.c_str());
   std::printf("dynamic:     %s\n", summary.dynamic_setup.c_str());
+  std::printf("segmenter:   %s\n", summary.segmenter.c_str());
+  if (summary.oracle_masks) {
+    std::printf(
+        "             ORACLE: these results use the sequence's ground-truth masks, which no camera "
+        "has;\n             run with --model ONNX (a network) or --segmenter none for real "
+        "figures\n");
+  }
   std::printf("frames:      %zu%s\n", s.frames, summary.interrupted ? " (interrupted)" : "");
   std::printf("tracked:     %zu (%.1f%%)\n", s.tracked, ratio);
   std::printf("keyframes:   %zu\n", s.keyframes);

@@ -120,6 +120,8 @@ RunSummary RunSequence(const RunOptions& options,
   RunSummary summary;
   summary.settings_source = resolved.source;
   summary.dynamic_setup = dynamic.description;
+  summary.segmenter = dynamic.segmenter_label;
+  summary.oracle_masks = dynamic.oracle;
   // --realtime: frames arrive at the dataset's rate, as from a sensor (never when sequential).
   const bool paced = options.dynamic.realtime && !options.sequential;
   const auto started = std::chrono::steady_clock::now();
@@ -170,6 +172,7 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["interrupted"] = summary.interrupted;
   json["settings"] = summary.settings_source;
   json["dynamic_setup"] = summary.dynamic_setup;
+  json["segmenter"] = {{"label", summary.segmenter}, {"oracle", summary.oracle_masks}};
   if (s.dynamic) {
     json["dynamic"] = DynamicStatsJson(*s.dynamic);
     json["segmentation"] = DynamicSegmentationJson(*s.dynamic);

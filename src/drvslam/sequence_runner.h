@@ -35,6 +35,10 @@ struct RunSummary {
   bool interrupted = false;
   std::string camera_trajectory_path;
   std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
+  // Where the masks came from (DynamicRunSetup::segmenter_label), and whether they were the
+  // dataset's ground truth: an oracle, which every shown result must say.
+  std::string segmenter;
+  bool oracle_masks = false;
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
 };
@@ -46,7 +50,8 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps, frames_lost, relocalization.{relocalizations,attempts,vocabulary_load_ms},
+// fps, frames_lost, segmenter.{label, oracle},
+// relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
 // motion_states} and segmentation.{SegmentationStatsJson}, and with dense mapping

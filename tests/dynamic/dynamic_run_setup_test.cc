@@ -48,11 +48,17 @@ TEST_F(DynamicRunSetupTest, DefaultsFollowTheDataset) {
   ASSERT_TRUE(synthetic.config.has_value());
   ASSERT_NE(synthetic.config->segmenter, nullptr);
   EXPECT_EQ(synthetic.description, "segmenter gt, dynamic on");
+  // Ground-truth masks chosen for the user are an oracle, and labelled so.
+  EXPECT_TRUE(synthetic.oracle);
+  EXPECT_TRUE(synthetic.implicit_ground_truth);
+  EXPECT_EQ(synthetic.segmenter_label, "gt (ground-truth masks: ORACLE)");
 
   const DynamicRunSetup plain = Resolve({}, "plain");
   EXPECT_EQ(plain.backend, SegmenterBackend::kNone);
   EXPECT_FALSE(plain.config.has_value());
   EXPECT_EQ(plain.description, "segmenter none, dynamic off");
+  EXPECT_FALSE(plain.oracle);
+  EXPECT_EQ(plain.segmenter_label, "none");
 }
 
 TEST_F(DynamicRunSetupTest, TheCommandLineWins) {
@@ -61,6 +67,15 @@ TEST_F(DynamicRunSetupTest, TheCommandLineWins) {
   const DynamicRunSetup baseline = Resolve(off, "synthetic");
   EXPECT_FALSE(baseline.config.has_value());
   EXPECT_EQ(baseline.description, "segmenter gt, dynamic off");
+  // Off uses no masks at all: not an oracle result.
+  EXPECT_FALSE(baseline.oracle);
+  EXPECT_EQ(baseline.segmenter_label, "none");
+
+  DynamicRunChoice explicit_gt;
+  explicit_gt.segmenter = "gt";
+  const DynamicRunSetup chosen = Resolve(explicit_gt, "synthetic");
+  EXPECT_TRUE(chosen.oracle);
+  EXPECT_FALSE(chosen.implicit_ground_truth);
 
   // Geometry only: no segmenter, dynamic handling on.
   DynamicRunChoice geometry;
@@ -91,6 +106,8 @@ TEST_F(DynamicRunSetupTest, AModelMeansYolo) {
   // Off: the model is never opened.
   choice.dynamic = "off";
   EXPECT_EQ(Resolve(choice, "synthetic").backend, SegmenterBackend::kYolo);
+  EXPECT_EQ(SegmenterLabel(SegmenterBackend::kYolo, "/models/yolov8n-seg-320x256.onnx"),
+            "yolo (yolov8n-seg-320x256.onnx)");
 }
 
 TEST_F(DynamicRunSetupTest, BadChoicesNameTheOption) {

@@ -72,6 +72,9 @@ TEST_F(DynamicIntegrationTest, DynamicHandlingTracksEveryFrameAndBeatsPlainTrack
 
   const nlohmann::json stats = nlohmann::json::parse(test::ReadFile(root_ / "on" / "stats.json"));
   EXPECT_EQ(stats["dynamic_setup"], "segmenter gt, dynamic on");
+  // The sequence's ground-truth masks are an oracle, and stats.json says so.
+  EXPECT_EQ(stats["segmenter"]["label"], "gt (ground-truth masks: ORACLE)");
+  EXPECT_EQ(stats["segmenter"]["oracle"], true);
   EXPECT_GT(stats["dynamic"]["features"]["removed"].get<double>(), 0.0);
   EXPECT_TRUE(stats["dynamic"]["motion_states"].contains("shipped"));
   EXPECT_EQ(stats["segmentation"]["segmented"], kFrames);

@@ -21,10 +21,25 @@ bool HasGroundTruthMasks(const std::string& dataset_dir) {
 
 }  // namespace
 
+std::string SegmenterLabel(SegmenterBackend backend, const std::string& model) {
+  switch (backend) {
+    case SegmenterBackend::kGroundTruth:
+      return "gt (ground-truth masks: ORACLE)";
+    case SegmenterBackend::kYolo:
+      return "yolo (" + fs::path(model).filename().string() + ")";
+    case SegmenterBackend::kMaskFiles:
+      return "masks (mask files)";
+    case SegmenterBackend::kNone:
+      break;
+  }
+  return "none";
+}
+
 DynamicRunSetup ResolveDynamicRun(const DynamicRunChoice& choice, const std::string& dataset_dir,
                                   SegmentationOptions segmentation, bool backend_in_settings,
                                   const DynamicOptions& dynamic) {
   if (!choice.model.empty()) segmentation.model = choice.model;
+  bool implicit_ground_truth = false;
   if (!choice.segmenter.empty()) {
     segmentation.backend = ParseSegmenterBackend(choice.segmenter, "--segmenter");
   } else if (!choice.model.empty()) {
@@ -33,6 +48,7 @@ DynamicRunSetup ResolveDynamicRun(const DynamicRunChoice& choice, const std::str
   } else if (!backend_in_settings) {
     segmentation.backend =
         HasGroundTruthMasks(dataset_dir) ? SegmenterBackend::kGroundTruth : SegmenterBackend::kNone;
+    implicit_ground_truth = segmentation.backend == SegmenterBackend::kGroundTruth;
   }
   if (segmentation.backend == SegmenterBackend::kYolo && segmentation.model.empty()) {
     throw Error("--segmenter yolo needs --model ONNX (or Segmentation.model in the settings)");
@@ -54,8 +70,19 @@ DynamicRunSetup ResolveDynamicRun(const DynamicRunChoice& choice, const std::str
 
   DynamicRunSetup setup;
   setup.backend = segmentation.backend;
+  // With dynamic handling off no masks are used, whatever the backend.
+  const SegmenterBackend used = on ? segmentation.backend : SegmenterBackend::kNone;
+  setup.oracle = used == SegmenterBackend::kGroundTruth;
+  setup.implicit_ground_truth = on && implicit_ground_truth;
+  setup.segmenter_label = SegmenterLabel(used, segmentation.model);
   setup.description = "segmenter " + ToString(segmentation.backend) + ", dynamic " +
                       (on ? "on" : "off") + (choice.realtime ? ", realtime" : "");
+  if (setup.implicit_ground_truth) {
+    spdlog::warn(
+        "no --segmenter or --model given: using the sequence's ground-truth masks, an ORACLE no "
+        "camera has; results are an upper bound. Pass --model ONNX (a network) or "
+        "--segmenter none to measure what a real camera gets");
+  }
   if (!on) {
     if (segmentation.backend != SegmenterBackend::kNone) {
       spdlog::info("dynamic handling is off: the {} segmenter is not run",

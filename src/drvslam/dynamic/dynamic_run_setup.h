@@ -28,7 +28,17 @@ struct DynamicRunSetup {
   std::optional<DynamicFrontEndConfig> config;  // nullopt: dynamic handling off
   SegmenterBackend backend = SegmenterBackend::kNone;
   std::string description;  // e.g. "segmenter gt, dynamic on"
+  // Where the masks come from, for every place that shows a result: "gt (ground-truth masks:
+  // ORACLE)", "yolo (MODEL FILE NAME)", "masks (mask files)", "none". Ground-truth masks are an
+  // oracle no camera has: `oracle` is true for them, and results must say so.
+  std::string segmenter_label;
+  bool oracle = false;
+  // The segmenter was chosen from the dataset's ground-truth masks, not by the user.
+  bool implicit_ground_truth = false;
 };
+
+// The label of DynamicRunSetup::segmenter_label for a backend (`model`: yolo's ONNX file).
+std::string SegmenterLabel(SegmenterBackend backend, const std::string& model);
 
 // `segmentation` / `dynamic`: what the settings file holds (defaults without one);
 // `backend_in_settings`: whether it set Segmentation.backend. Creates the segmenter only when
