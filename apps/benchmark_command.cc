@@ -93,9 +93,14 @@ void RunBenchmarkCommand(const BenchmarkArguments& args) {
   std::printf("wrote:       %s/benchmark.md, %s/benchmark.json\n", args.out.c_str(),
               args.out.c_str());
   std::size_t runs = 0;
-  for (const BenchmarkEntryResult& entry : report.entries) runs += entry.runs.size();
+  std::size_t finished = 0;
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    runs += entry.runs.size();
+    finished += entry.aggregate.finished;
+  }
   if (report.interrupted) {
-    throw Error("interrupted: the tables hold the " + std::to_string(runs) + " runs started");
+    throw Error("interrupted after " + std::to_string(finished) + " finished run" +
+                (finished == 1 ? "" : "s") + "; " + args.out + "/benchmark.md holds them");
   }
   if (report.FailedRuns() > 0) {
     throw Error(std::to_string(report.FailedRuns()) + " of " + std::to_string(runs) +

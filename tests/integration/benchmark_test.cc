@@ -423,6 +423,11 @@ TEST_F(BenchmarkEndToEndTest, TwoSequentialRunsAgreeAndAFailedRunIsRecordedAndRe
   for (const char* file : {"CameraTrajectory.txt", "stats.json", "eval.json"}) {
     EXPECT_TRUE(fs::exists(fs::path(run_dir) / file)) << file;
   }
+  // frames_skipped is the run's own stats.json figure where it reports one, else null.
+  std::ifstream stats_file(fs::path(run_dir) / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(second["frames_skipped"],
+            stats.contains("frames_skipped") ? stats["frames_skipped"] : nlohmann::json(nullptr));
   std::ifstream eval_file(fs::path(run_dir) / "eval.json");
   EXPECT_EQ(nlohmann::json::parse(eval_file)["ate"]["rmse"].get<double>(), ate);
 
