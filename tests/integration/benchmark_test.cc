@@ -1,0 +1,490 @@
+// `drvslam benchmark`: the statistics over runs, the list file and its errors, the tables, and an
+// end-to-end benchmark of a short synthetic sequence through the CLI (sequential, so that its two
+// runs must agree exactly).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "drvslam/benchmark_list.h"
+#include "drvslam/benchmark_report.h"
+#include "drvslam/benchmark_runner.h"
+#include "drvslam/core/error.h"
+#include "synthesized_sequence.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+void WriteText(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+// A folder that passes the list checks: it exists and has a groundtruth.txt.
+fs::path FakeSequence(const fs::path& path) {
+  WriteText(path / "groundtruth.txt", "0 0 0 0 0 0 0 1\n");
+  return path;
+}
+
+// The message of the Error that `call` throws; fails the test when it throws none.
+template <typename Call>
+std::string ErrorOf(Call call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no Error thrown";
+  return "";
+}
+
+BenchmarkRun FinishedRun(int index, std::optional<double> ate, double tracked_share) {
+  BenchmarkRun run;
+  run.index = index;
+  run.ate_rmse = ate;
+  run.rpe_trans_rmse = ate ? std::optional<double>(*ate / 2) : std::nullopt;
+  run.tracked_share = tracked_share;
+  run.frames = 100;
+  run.tracked = static_cast<std::size_t>(100 * tracked_share);
+  run.frames_lost = 100 - run.tracked;
+  run.wall_s = 10.0 + index;
+  run.fps = 100 / run.wall_s;
+  run.track_median_ms = 20.0 + index;
+  run.track_p95_ms = 40.0 + index;
+  return run;
+}
+
+TEST(BenchmarkAggregateTest, MedianMinMaxAndPopulationStdOverTheEvaluatedRuns) {
+  std::vector<BenchmarkRun> runs = {FinishedRun(1, 0.01, 1.0), FinishedRun(2, 0.03, 0.98),
+                                    FinishedRun(3, 0.02, 0.99), FinishedRun(4, 0.05, 0.97),
+                                    FinishedRun(5, std::nullopt, 0.10)};
+  BenchmarkRun failed;
+  failed.index = 6;
+  failed.status = RunStatus::kFailed;
+  failed.error = "cannot decode";
+  runs.push_back(failed);
+
+  const BenchmarkAggregate a = AggregateRuns(runs);
+  EXPECT_EQ(a.runs, 6u);
+  EXPECT_EQ(a.finished, 5u);
+  EXPECT_EQ(a.evaluated, 4u);
+  EXPECT_EQ(a.ate_rmse.count, 4u);
+  EXPECT_DOUBLE_EQ(a.ate_rmse.median, 0.025);  // even count: mean of the middle two
+  EXPECT_DOUBLE_EQ(a.ate_rmse.min, 0.01);
+  EXPECT_DOUBLE_EQ(a.ate_rmse.max, 0.05);
+  EXPECT_NEAR(a.ate_rmse.mean, 0.0275, 1e-12);
+  EXPECT_NEAR(a.ate_rmse.std, std::sqrt(8.75e-4 / 4), 1e-12);  // divides by n, as numpy
+  EXPECT_DOUBLE_EQ(a.rpe_trans_rmse.median, 0.0125);
+  // Tracked share, lost frames and timings count every finished run, the unevaluated one too.
+  EXPECT_EQ(a.tracked_share.count, 5u);
+  EXPECT_DOUBLE_EQ(a.tracked_share.median, 0.98);
+  EXPECT_DOUBLE_EQ(a.tracked_share.min, 0.10);
+  EXPECT_DOUBLE_EQ(a.frames_lost.max, 90.0);
+  EXPECT_DOUBLE_EQ(a.wall_s.median, 13.0);
+  EXPECT_DOUBLE_EQ(a.track_median_ms.median, 23.0);
+  EXPECT_DOUBLE_EQ(a.track_p95_ms.median, 43.0);
+  EXPECT_FALSE(a.frames_skipped.has_value());
+}
+
+TEST(BenchmarkAggregateTest, FramesSkippedOnlyWhenEveryFinishedRunReportsThem) {
+  std::vector<BenchmarkRun> runs = {FinishedRun(1, 0.01, 1.0), FinishedRun(2, 0.01, 1.0),
+                                    FinishedRun(3, 0.01, 1.0)};
+  runs[0].frames_skipped = 4;
+  runs[1].frames_skipped = 0;
+  EXPECT_FALSE(AggregateRuns(runs).frames_skipped.has_value());
+  runs[2].frames_skipped = 9;
+  const BenchmarkAggregate a = AggregateRuns(runs);
+  ASSERT_TRUE(a.frames_skipped.has_value());
+  EXPECT_DOUBLE_EQ(a.frames_skipped->median, 4.0);
+  EXPECT_DOUBLE_EQ(a.frames_skipped->max, 9.0);
+}
+
+TEST(BenchmarkListTest, ReadsEntriesWithPathsRelativeToTheListFile) {
+  const fs::path root = test::FreshTempFolder("drvslam_benchmark_list");
+  FakeSequence(root / "data" / "walking_xyz");
+  WriteText(root / "lists" / "bench.json", R"({"entries": [
+      {"dataset": "../data/walking_xyz"},
+      {"name": "walking-yolo", "dataset": "../data/walking_xyz/", "config": "../data/s.yaml",
+       "segmenter": "yolo", "model": "/models/m.onnx", "dynamic": "on", "mode": "realtime",
+       "dense": "off", "loop": "on", "max_frames": 120, "runs": 3}]})");
+  const std::vector<BenchmarkEntry> entries =
+      ReadBenchmarkList((root / "lists" / "bench.json").string());
+  ASSERT_EQ(entries.size(), 2u);
+  EXPECT_EQ(entries[0].name, "walking_xyz");
+  EXPECT_EQ(entries[0].dataset, (root / "data" / "walking_xyz").string());
+  EXPECT_EQ(entries[0].mode, "threaded");
+  EXPECT_FALSE(entries[0].runs.has_value());
+  EXPECT_EQ(entries[1].name, "walking-yolo");
+  EXPECT_EQ(entries[1].config, (root / "data" / "s.yaml").string());
+  EXPECT_EQ(entries[1].model, "/models/m.onnx");
+  EXPECT_EQ(entries[1].segmenter, "yolo");
+  EXPECT_EQ(entries[1].mode, "realtime");
+  EXPECT_EQ(entries[1].dense, "off");
+  EXPECT_EQ(entries[1].loop, "on");
+  EXPECT_EQ(entries[1].max_frames, 120u);
+  EXPECT_EQ(entries[1].runs, 3);
+
+  const RunOptions run = ToRunOptions(entries[1], "out/walking-yolo/run_1");
+  EXPECT_FALSE(run.sequential);
+  EXPECT_TRUE(run.dynamic.realtime);
+  EXPECT_EQ(run.max_frames, 120u);
+  EXPECT_EQ(FormatRunCommand(run),
+            "drvslam run --dataset " + entries[1].dataset + " --config " + entries[1].config +
+                " --out out/walking-yolo/run_1 --realtime --max-frames 120 --segmenter yolo "
+                "--model /models/m.onnx --dynamic on --dense off --loop on");
+  fs::remove_all(root);
+}
+
+TEST(BenchmarkListTest, ListErrorsNameTheFileTheEntryAndTheKey) {
+  const fs::path root = test::FreshTempFolder("drvslam_benchmark_list_errors");
+  FakeSequence(root / "seq");
+  const auto read = [&root](const std::string& text) {
+    WriteText(root / "bench.json", text);
+    return ErrorOf([&root] { ReadBenchmarkList((root / "bench.json").string()); });
+  };
+  const std::string file = (root / "bench.json").string();
+  std::string message =
+      read(R"({"entries": [{"dataset": "seq"}, {"dataset": "seq", "mdoe": "x"}]})");
+  EXPECT_NE(message.find(file + ": entry 2"), std::string::npos) << message;
+  EXPECT_NE(message.find("unknown key 'mdoe'"), std::string::npos) << message;
+  message = read(R"({"entries": [{"dataset": "seq", "runs": "5"}]})");
+  EXPECT_NE(message.find("entry 1: key 'runs' must be an integer"), std::string::npos) << message;
+  message = read(R"({"entries": [{"dataset": 3}]})");
+  EXPECT_NE(message.find("key 'dataset' must be a string"), std::string::npos) << message;
+  message = read(R"({"entries": [{"name": "x"}]})");
+  EXPECT_NE(message.find("key 'dataset' is missing"), std::string::npos) << message;
+  message = read(R"({"entries": [{"dataset": "seq", "max_frames": -1}]})");
+  EXPECT_NE(message.find("max_frames = -1"), std::string::npos) << message;
+  message = read(R"({"entries": [{"dataset": "seq"},]})");
+  EXPECT_NE(message.find(file + ": not valid JSON"), std::string::npos) << message;
+  message = read(R"({"entries": [], "runs": 3})");
+  EXPECT_NE(message.find("unknown key 'runs'"), std::string::npos) << message;
+  message = read(R"({"entries": []})");
+  EXPECT_NE(message.find("'entries' is empty"), std::string::npos) << message;
+  message = ErrorOf([&root] { ReadBenchmarkList((root / "absent.json").string()); });
+  EXPECT_NE(message.find("absent.json: cannot open"), std::string::npos) << message;
+  fs::remove_all(root);
+}
+
+TEST(BenchmarkListTest, EntriesThatCannotRunAreRejectedBeforeAnyRun) {
+  const fs::path root = test::FreshTempFolder("drvslam_benchmark_check");
+  FakeSequence(root / "seq");
+  fs::create_directories(root / "no_gt");
+  const auto check = [&root](const std::string& entry_json) {
+    WriteText(root / "bench.json", "{\"entries\": [" + entry_json + "]}");
+    return ErrorOf(
+        [&root] { CheckBenchmarkEntries(ReadBenchmarkList((root / "bench.json").string())); });
+  };
+  std::string message = check(R"({"dataset": "absent"})");
+  EXPECT_NE(message.find("entry 1 (absent): dataset folder"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
+  message = check(R"({"dataset": "no_gt"})");
+  EXPECT_NE(message.find("has no groundtruth.txt"), std::string::npos) << message;
+  message = check(R"({"dataset": "seq", "mode": "fast"})");
+  EXPECT_NE(message.find("mode = 'fast' must be threaded, sequential or realtime"),
+            std::string::npos)
+      << message;
+  message = check(R"({"dataset": "seq", "segmenter": "sam"})");
+  EXPECT_NE(message.find("segmenter = 'sam'"), std::string::npos) << message;
+  message = check(R"({"dataset": "seq", "dynamic": "yes"})");
+  EXPECT_NE(message.find("dynamic = 'yes' must be on or off"), std::string::npos) << message;
+  message = check(R"({"dataset": "seq", "runs": 0})");
+  EXPECT_NE(message.find("entry 1 (seq): runs = 0 must be at least 1"), std::string::npos)
+      << message;
+  message = check(R"({"dataset": "seq", "config": "absent.yaml"})");
+  EXPECT_NE(message.find("config file"), std::string::npos) << message;
+  message = check(R"({"dataset": "seq", "name": "a/b"})");
+  EXPECT_NE(message.find("name 'a/b' must be"), std::string::npos) << message;
+  message = check(R"({"dataset": "seq"}, {"dataset": "seq"})");
+  EXPECT_NE(message.find("entry 2 (seq): name 'seq' is already used by"), std::string::npos)
+      << message;
+  WriteText(root / "bench.json",
+            R"({"entries": [{"dataset": "seq", "name": "a"}, {"dataset": "seq", "name": "b"}]})");
+  EXPECT_NO_THROW(CheckBenchmarkEntries(ReadBenchmarkList((root / "bench.json").string())));
+
+  // --runs below 1 is refused before any folder is made.
+  BenchmarkShortcut shortcut;
+  shortcut.datasets = {(root / "seq").string()};
+  BenchmarkOptions options;
+  options.entries = EntriesFromShortcut(shortcut);
+  options.runs = 0;
+  options.out_dir = (root / "out").string();
+  message = ErrorOf([&options] { RunBenchmark(options); });
+  EXPECT_NE(message.find("--runs = 0 must be at least 1"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(root / "out"));
+  fs::remove_all(root);
+}
+
+TEST(BenchmarkListTest, ShortcutNamesEachEntryAfterItsFolderUniquely) {
+  BenchmarkShortcut shortcut;
+  shortcut.datasets = {"data/walking_xyz/", "other/walking_xyz", "static xyz"};
+  shortcut.mode = "sequential";
+  shortcut.segmenter = "gt";
+  const std::vector<BenchmarkEntry> entries = EntriesFromShortcut(shortcut);
+  ASSERT_EQ(entries.size(), 3u);
+  EXPECT_EQ(entries[0].name, "walking_xyz");
+  EXPECT_EQ(entries[1].name, "walking_xyz_2");
+  EXPECT_EQ(entries[2].name, "static_xyz");
+  EXPECT_EQ(entries[2].origin, "--dataset static xyz");
+  EXPECT_EQ(entries[1].mode, "sequential");
+  EXPECT_EQ(entries[1].segmenter, "gt");
+  EXPECT_EQ(ShellQuote("static xyz"), "'static xyz'");
+  EXPECT_EQ(ShellQuote("it's"), "'it'\\''s'");
+  EXPECT_EQ(ShellQuote("a/b_c-1.json"), "a/b_c-1.json");
+}
+
+// Every row of each Markdown table has as many cells as its header.
+void ExpectRectangularTables(const std::string& markdown) {
+  std::istringstream lines(markdown);
+  long header_bars = -1;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] != '|') {
+      header_bars = -1;
+      continue;
+    }
+    std::string unescaped = line;
+    for (std::size_t at; (at = unescaped.find("\\|")) != std::string::npos;) {
+      unescaped.erase(at, 2);
+    }
+    const long bars = std::count(unescaped.begin(), unescaped.end(), '|');
+    if (header_bars < 0) header_bars = bars;
+    EXPECT_EQ(bars, header_bars) << line;
+  }
+}
+
+TEST(BenchmarkReportTest, TablesLabelOracleMasksAndShowFailedRuns) {
+  BenchmarkReport report;
+  report.command = "drvslam benchmark --list b.json --runs 2 --out o";
+  report.machine = DescribeMachine();
+  BenchmarkEntryResult oracle;
+  oracle.entry.name = "walking_gt";
+  oracle.entry.mode = "threaded";
+  oracle.segmenter = "gt";
+  oracle.segmenter_used = oracle.dynamic_on = oracle.oracle = true;
+  oracle.runs_requested = 2;
+  oracle.runs = {FinishedRun(1, 0.0123, 1.0), FinishedRun(2, 0.0125, 0.99)};
+  oracle.runs[1].frames_skipped = 3;  // only one run reports it: no column
+  oracle.aggregate = AggregateRuns(oracle.runs);
+  BenchmarkEntryResult yolo;
+  yolo.entry.name = "walking_yolo";
+  yolo.entry.mode = "realtime";
+  yolo.segmenter = "yolo";
+  yolo.model = "/m/yolov8n-seg-320x256.onnx";
+  yolo.segmenter_used = yolo.dynamic_on = true;
+  yolo.runs_requested = 2;
+  BenchmarkRun failed;
+  failed.index = 1;
+  failed.status = RunStatus::kFailed;
+  failed.error = "rgb/1.png: cannot decode colour image | corrupt";
+  yolo.runs = {failed, FinishedRun(2, std::nullopt, 0.02)};
+  yolo.runs[1].eval_note = "ATE n/a: too few";
+  yolo.aggregate = AggregateRuns(yolo.runs);
+  BenchmarkEntryResult off;
+  off.entry.name = "walking_off";
+  off.entry.mode = "sequential";
+  off.segmenter = "gt";
+  off.runs_requested = 2;
+  report.entries = {oracle, yolo, off};
+
+  const std::string md = FormatBenchmarkMarkdown(report);
+  ExpectRectangularTables(md);
+  EXPECT_NE(md.find("| walking_gt | gt (ORACLE masks) | on | threaded | 2/2 | 100 | 1.24 | 1.23 | "
+                    "1.25 | 0.01 | 0.62 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("**ORACLE masks:**"), std::string::npos) << md;
+  EXPECT_NE(md.find("| walking_yolo | yolo (yolov8n-seg-320x256.onnx) | on | realtime | 1/2 (1 "
+                    "FAILED) | 100 | n/a | n/a | n/a | n/a | n/a |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| walking_off | none (dynamic off) | off | sequential | 0/2 | n/a |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("1 run FAILED"), std::string::npos) << md;
+  EXPECT_NE(md.find("- walking_yolo run 1: rgb/1.png: cannot decode"), std::string::npos) << md;
+  EXPECT_NE(md.find("| walking_yolo | 1 | **FAILED** |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("frames skipped"), std::string::npos) << md;
+  EXPECT_NE(md.find("load average at the start " + report.machine.load_average), std::string::npos)
+      << md;
+
+  const nlohmann::json json = BenchmarkJson(report);
+  EXPECT_EQ(json["failed_runs"], 1);
+  EXPECT_EQ(json["entries"][0]["segmenter_label"], "gt (ORACLE masks)");
+  EXPECT_EQ(json["entries"][0]["oracle"], true);
+  EXPECT_EQ(json["entries"][1]["oracle"], false);
+  EXPECT_EQ(json["entries"][1]["runs"][0]["status"], "failed");
+  EXPECT_TRUE(json["entries"][1]["aggregate"]["ate_rmse_m"].is_null());
+  EXPECT_TRUE(json["entries"][1]["runs"][1]["ate_rmse_m"].is_null());
+  EXPECT_DOUBLE_EQ(json["entries"][0]["aggregate"]["ate_rmse_m"]["median"].get<double>(), 0.0124);
+  EXPECT_GT(json["machine"]["cores"].get<int>(), 0);
+}
+
+class BenchmarkEndToEndTest : public ::testing::Test {
+ protected:
+  static constexpr int kFrames = 60;
+  static void SetUpTestSuite() {
+    root_ = test::FreshTempFolder("drvslam_benchmark_e2e");
+    const std::string failure = test::SynthesizeSequence(
+        root_, "--scenario walking_xyz --frames " + std::to_string(kFrames) + " --seed 1");
+    ASSERT_TRUE(failure.empty()) << failure;
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+  static fs::path root_;
+};
+
+fs::path BenchmarkEndToEndTest::root_;
+
+// The 20th colour image listed in the sequence's rgb.txt.
+fs::path TwentiethImage(const fs::path& sequence) {
+  std::ifstream list(sequence / "rgb.txt");
+  int seen = 0;
+  for (std::string line; std::getline(list, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (++seen == 20) return sequence / line.substr(line.find(' ') + 1);
+  }
+  return {};
+}
+
+TEST_F(BenchmarkEndToEndTest, TwoSequentialRunsAgreeAndAFailedRunIsRecordedAndReported) {
+  // A copy whose 20th image is corrupt: its run fails at that frame, the benchmark goes on.
+  const fs::path broken = root_ / "broken";
+  fs::copy(root_ / "seq", broken, fs::copy_options::recursive);
+  const fs::path image = TwentiethImage(broken);
+  ASSERT_TRUE(fs::exists(image)) << image;
+  WriteText(image, "not a png");
+  WriteText(root_ / "bench.json", R"({"entries": [
+      {"name": "broken", "dataset": "broken", "segmenter": "gt", "mode": "sequential",
+       "dense": "off", "runs": 1},
+      {"name": "walking_gt", "dataset": "seq", "segmenter": "gt", "mode": "sequential",
+       "dense": "off"}]})");
+  const fs::path out = root_ / "out";
+  const std::string command = std::string(DRVSLAM_CLI) + " --log-level warn benchmark --list " +
+                              (root_ / "bench.json").string() + " --runs 2 --out " + out.string() +
+                              " > " + (root_ / "log.txt").string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string log = test::ReadFile(root_ / "log.txt");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 2) << log;  // a run failed
+  EXPECT_NE(log.find("broken 1/1: FAILED: "), std::string::npos) << log;
+  EXPECT_NE(log.find("walking_gt 1/2: ATE "), std::string::npos) << log;
+  EXPECT_NE(log.find("walking_gt 2/2: ATE "), std::string::npos) << log;
+  EXPECT_NE(log.find("error: 1 of 3 runs failed"), std::string::npos) << log;
+
+  std::ifstream json_file(out / "benchmark.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  EXPECT_EQ(json["failed_runs"], 1);
+  EXPECT_EQ(json["interrupted"], false);
+  ASSERT_EQ(json["entries"].size(), 2u);
+  const nlohmann::json& broken_entry = json["entries"][0];
+  EXPECT_EQ(broken_entry["runs"][0]["status"], "failed");
+  EXPECT_NE(broken_entry["runs"][0]["error"].get<std::string>().find("cannot decode"),
+            std::string::npos);
+  const nlohmann::json& walking = json["entries"][1];
+  EXPECT_EQ(walking["segmenter"], "gt");
+  EXPECT_EQ(walking["segmenter_label"], "gt (ORACLE masks)");
+  EXPECT_EQ(walking["oracle"], true);
+  EXPECT_EQ(walking["dynamic_setup"], "segmenter gt, dynamic on");
+  EXPECT_EQ(walking["mode"], "sequential");
+  ASSERT_EQ(walking["runs"].size(), 2u);
+  const nlohmann::json& first = walking["runs"][0];
+  const nlohmann::json& second = walking["runs"][1];
+  EXPECT_EQ(first["status"], "ok");
+  EXPECT_EQ(first["frames"], kFrames);
+  EXPECT_GE(first["tracked_share"].get<double>(), 0.95);
+  const double ate = first["ate_rmse_m"].get<double>();
+  EXPECT_GT(ate, 0.0);
+  EXPECT_LT(ate, 0.05);
+  // Sequential runs are bit-identical: the same ATE and RPE, so no spread.
+  EXPECT_EQ(second["ate_rmse_m"].get<double>(), ate);
+  EXPECT_EQ(second["rpe_trans_rmse_m"].get<double>(), first["rpe_trans_rmse_m"].get<double>());
+  const nlohmann::json& aggregate = walking["aggregate"];
+  EXPECT_EQ(aggregate["evaluated"], 2);
+  EXPECT_EQ(aggregate["ate_rmse_m"]["median"].get<double>(), ate);
+  EXPECT_EQ(aggregate["ate_rmse_m"]["std"].get<double>(), 0.0);
+  for (const char* key : {"rpe_trans_rmse_m", "rpe_rot_rmse_deg", "tracked_share", "frames_lost",
+                          "wall_s", "fps", "track_median_ms", "track_p95_ms"}) {
+    EXPECT_EQ(aggregate[key]["count"], 2) << key;
+  }
+  EXPECT_GT(aggregate["track_median_ms"]["median"].get<double>(), 0.0);
+  EXPECT_GT(aggregate["fps"]["median"].get<double>(), 0.0);
+  const std::string run_dir = (out / "walking_gt" / "run_2").string();
+  EXPECT_EQ(second["out_dir"], run_dir);
+  for (const char* file : {"CameraTrajectory.txt", "stats.json", "eval.json"}) {
+    EXPECT_TRUE(fs::exists(fs::path(run_dir) / file)) << file;
+  }
+  // frames_skipped is the run's own stats.json figure where it reports one, else null.
+  std::ifstream stats_file(fs::path(run_dir) / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(second["frames_skipped"],
+            stats.contains("frames_skipped") ? stats["frames_skipped"] : nlohmann::json(nullptr));
+  std::ifstream eval_file(fs::path(run_dir) / "eval.json");
+  EXPECT_EQ(nlohmann::json::parse(eval_file)["ate"]["rmse"].get<double>(), ate);
+
+  const std::string md = test::ReadFile(out / "benchmark.md");
+  ExpectRectangularTables(md);
+  char ate_cell[32];
+  std::snprintf(ate_cell, sizeof(ate_cell), "%.2f", 100 * ate);
+  EXPECT_NE(md.find("| walking_gt | gt (ORACLE masks) | on | sequential | 2/2 | 60 | " +
+                    std::string(ate_cell) + " | " + ate_cell + " | " + ate_cell + " | 0.00 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| broken | gt (ORACLE masks) | on | sequential | 0/1 (1 FAILED) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("**ORACLE masks:**"), std::string::npos) << md;
+  EXPECT_NE(md.find("drvslam benchmark --list " + (root_ / "bench.json").string() +
+                    " --runs 2 --out " + out.string()),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("`drvslam run --dataset " + (root_ / "seq").string() + " --out " +
+                    (out / "walking_gt" / "run_1").string() +
+                    " --sequential --segmenter gt --dense off`"),
+            std::string::npos)
+      << md;
+}
+
+TEST_F(BenchmarkEndToEndTest, StoppingKeepsTheTablesOfWhatFinished) {
+  BenchmarkOptions options;
+  BenchmarkShortcut shortcut;
+  shortcut.datasets = {(root_ / "seq").string()};
+  shortcut.mode = "sequential";
+  shortcut.dense = "off";
+  options.entries = EntriesFromShortcut(shortcut);
+  options.runs = 3;
+  options.out_dir = (root_ / "stopped").string();
+  std::atomic<bool> stop{false};
+  BenchmarkProgress progress;
+  int started = 0;
+  progress.run_started = [&started](const BenchmarkEntryResult&, int) { ++started; };
+  progress.frame_done = [&stop](std::size_t done, std::size_t) {
+    if (done == 10) stop = true;  // Ctrl-C during the first run
+  };
+  const BenchmarkReport report = RunBenchmark(options, progress, &stop);
+  EXPECT_TRUE(report.interrupted);
+  EXPECT_EQ(started, 1);
+  ASSERT_EQ(report.entries.size(), 1u);
+  ASSERT_EQ(report.entries[0].runs.size(), 1u);
+  EXPECT_EQ(report.entries[0].runs[0].status, RunStatus::kInterrupted);
+  EXPECT_EQ(report.entries[0].runs[0].frames, 10u);
+  EXPECT_EQ(report.entries[0].aggregate.finished, 0u);
+  EXPECT_EQ(report.FailedRuns(), 0u);
+  const std::string md = test::ReadFile(root_ / "stopped" / "benchmark.md");
+  EXPECT_NE(md.find("status: interrupted (Ctrl-C)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| seq | 1 | interrupted |"), std::string::npos) << md;
+  std::ifstream json_file(root_ / "stopped" / "benchmark.json");
+  EXPECT_EQ(nlohmann::json::parse(json_file)["interrupted"], true);
+}
+
+}  // namespace
+}  // namespace drvslam
