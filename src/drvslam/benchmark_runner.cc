@@ -51,7 +51,7 @@ void ResolveSegmenter(const BenchmarkEntry& entry, BenchmarkEntryResult* result)
   result->segmenter = ToString(setup.backend);
   result->dynamic_on = setup.config.has_value();
   result->segmenter_used = result->dynamic_on && setup.backend != SegmenterBackend::kNone;
-  result->oracle = result->segmenter_used && setup.backend == SegmenterBackend::kGroundTruth;
+  result->oracle = setup.oracle;
   if (setup.backend == SegmenterBackend::kYolo) {
     result->model = entry.model.empty() ? segmentation.model : entry.model;
   }
