@@ -35,6 +35,15 @@ struct RunSummary {
   bool interrupted = false;
   std::string camera_trajectory_path;
   std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
+  // The frames the run was to process: the dataset's (associated colour-depth pairs), or
+  // --max-frames when fewer; what ATE coverage counts against (AteOptions::sequence_frames).
+  std::size_t sequence_frames = 0;
+  // Wall-clock time of the whole run, from the start of the frame loop (reading images included)
+  // to the end of System::Shutdown (local mapping, loop closing and dense mapping drained);
+  // writing the outputs is not included. fps = stats.frames / wall_s, the run's throughput
+  // (stats.tracking_fps counts the time inside TrackRGBD only).
+  double wall_s = 0.0;
+  double fps = 0.0;
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
 };
@@ -46,7 +55,10 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps, frames_lost, relocalization.{relocalizations,attempts,vocabulary_load_ms},
+// fps (wall-clock throughput of the whole run: frames / wall_s, see RunSummary), wall_s (the
+// run's wall time in seconds, frame loop and shutdown drain, writing the outputs excluded),
+// tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost,
+// relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
 // motion_states} and segmentation.{SegmentationStatsJson}, and with dense mapping
