@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "command_registry.h"
@@ -11,6 +12,7 @@
 #include "drvslam/eval/rpe.h"
 #include "drvslam/eval/trajectory_plot.h"
 #include "drvslam/io/trajectory_io.h"
+#include "drvslam/io/tum_dataset.h"
 
 namespace {
 
@@ -21,11 +23,18 @@ struct EvalArguments {
   double rpe_delta = 1.0;
   std::string json_path;
   std::string plot_path;
+  std::string dataset;  // sequence folder whose frames coverage counts against
 };
 
-void RunEval(const EvalArguments& args) {
+// The frames `drvslam run` processes in the sequence: colour images paired with depth.
+std::size_t SequenceFrames(const std::string& dataset) {
+  return drvslam::TumDataset(dataset).Size();
+}
+
+void RunEval(EvalArguments args) {
   // Check every option before reading files, so a typo is reported at once.
   args.ate.Check();
+  if (!args.dataset.empty()) args.ate.sequence_frames = SequenceFrames(args.dataset);
   drvslam::RpeOptions rpe_options;
   rpe_options.delta = args.rpe_delta;
   rpe_options.offset = args.ate.offset;
@@ -36,7 +45,9 @@ void RunEval(const EvalArguments& args) {
   const drvslam::AteResult ate = drvslam::ComputeAte(gt, est, args.ate);
   // With --scale the estimate's relative motions are compared at the scale ATE found.
   rpe_options.scale = ate.alignment.scale;
-  const drvslam::RpeResult rpe = drvslam::ComputeRpe(gt, est, rpe_options);
+  // An estimate shorter than --rpe-delta has no RPE (n/a), but still its ATE.
+  const std::optional<drvslam::RpeResult> rpe =
+      drvslam::ComputeRpeIfLongEnough(gt, est, rpe_options);
 
   std::cout << "ground truth: " << args.ground_truth << " (" << gt.size() << " poses)\n"
             << "estimate:     " << args.estimate << " (" << est.size() << " poses)\n"
@@ -69,6 +80,14 @@ const bool kRegistered = drvslam::cli::RegisterCommand("eval", [](CLI::App& root
                 "evaluation is rigid)");
   cmd->add_option("--rpe-delta", args->rpe_delta, "time (s) between the poses RPE compares")
       ->capture_default_str();
+  auto* frames =
+      cmd->add_option("--frames", args->ate.sequence_frames,
+                      "frames of the sequence: coverage is matched poses over them (default: "
+                      "over the ground-truth poses)")
+          ->check(CLI::PositiveNumber);
+  cmd->add_option("--dataset", args->dataset,
+                  "sequence folder (TUM layout): its frame count, as --frames")
+      ->excludes(frames);
   cmd->add_option("--json", args->json_path, "write the results as JSON to this file");
   cmd->add_option("--plot", args->plot_path,
                   "write a PNG: top view of ground truth and aligned estimate, ATE over time");

@@ -1,6 +1,8 @@
 // drvslam run: SLAM over a TUM-layout sequence (see DESIGN.md for the contract).
 #include <csignal>
 #include <cstdio>
+#include <optional>
+#include <string>
 
 #include "command_registry.h"
 #include "drvslam/sequence_runner.h"
@@ -12,6 +14,14 @@ namespace {
 std::atomic<bool> g_stop_requested{false};
 
 void RequestStop(int) { g_stop_requested = true; }
+
+// A ratio with three decimals, or n/a when it is undefined (nothing to score).
+std::string RatioText(const std::optional<double>& ratio) {
+  if (!ratio) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f", *ratio);
+  return text;
+}
 
 void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   const SystemStats& s = summary.stats;
@@ -35,7 +45,10 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
     std::printf("%-12s median %.2f ms, p95 %.2f ms\n", (stage + ":").c_str(), timing.median_ms,
                 timing.p95_ms);
   }
-  std::printf("fps:         %.1f\n", s.fps);
+  std::printf(
+      "fps:         %.1f (wall clock: %zu frames in %.2f s, reading and shutdown drain "
+      "included; %.1f in tracking calls alone)\n",
+      summary.fps, s.frames, summary.wall_s, s.tracking_fps);
   if (s.dynamic) {
     const DynamicStats& d = *s.dynamic;
     std::printf("removed:     %zu of %zu features (%zu on objects, %zu unlabelled motion)\n",
@@ -46,8 +59,8 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   }
   if (summary.motion_states) {
     const Confusion& c = summary.motion_states->shipped;
-    std::printf("states:      precision %.3f, recall %.3f against ground truth\n", c.Precision(),
-                c.Recall());
+    std::printf("states:      precision %s, recall %s against ground truth\n",
+                RatioText(c.Precision()).c_str(), RatioText(c.Recall()).c_str());
   }
   if (s.dense) {
     const DenseMapStats& d = *s.dense;

@@ -2,6 +2,7 @@
 
 #include <sched.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -92,14 +93,17 @@ std::optional<std::size_t> ReadFramesSkipped(const fs::path& stats_path) {
 }
 
 // ATE and RPE of the run's trajectory; eval.json records them, or why they are missing.
+// `sequence_frames`: the frames the run was given, what ATE coverage counts against.
 void Evaluate(const Trajectory& groundtruth, const std::string& trajectory_path,
-              const fs::path& eval_path, BenchmarkRun* run) {
+              std::size_t sequence_frames, const fs::path& eval_path, BenchmarkRun* run) {
   std::optional<AteResult> ate;
   std::optional<RpeResult> rpe;
   try {
     const Trajectory estimate = ReadTumTrajectory(trajectory_path, /*allow_empty=*/true);
     try {
-      ate = ComputeAte(groundtruth, estimate, AteOptions{});
+      AteOptions ate_options;
+      ate_options.sequence_frames = sequence_frames;
+      ate = ComputeAte(groundtruth, estimate, ate_options);
     } catch (const Error& e) {
       run->eval_note = std::string("ATE n/a: ") + e.what();
     }
@@ -151,9 +155,11 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
   const SystemStats& stats = summary.stats;
   run.frames = stats.frames;
   run.tracked = stats.tracked;
-  run.tracked_share = stats.frames > 0 ? static_cast<double>(stats.tracked) / stats.frames : 0.0;
+  // Over the frames the camera delivered: frames skipped in realtime mode count as not tracked.
+  const std::size_t delivered = std::max(summary.sequence_frames, stats.frames);
+  run.tracked_share = delivered > 0 ? static_cast<double>(stats.tracked) / delivered : 0.0;
   run.frames_lost = stats.frames_lost;
-  run.fps = run.wall_s > 0 ? stats.frames / run.wall_s : 0.0;
+  run.fps = run.wall_s > 0 ? delivered / run.wall_s : 0.0;
   run.vocabulary_load_ms = stats.vocabulary_load_ms;
   const auto total = stats.stages.find("total");
   if (total != stats.stages.end()) {
@@ -166,7 +172,8 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
     run.eval_note = "interrupted: not evaluated";
     return run;
   }
-  Evaluate(prepared.groundtruth, summary.camera_trajectory_path, run_dir / "eval.json", &run);
+  Evaluate(prepared.groundtruth, summary.camera_trajectory_path, summary.sequence_frames,
+           run_dir / "eval.json", &run);
   return run;
 }
 

@@ -48,11 +48,13 @@ DemoResult RunAndEvaluate(const fs::path& sequence, const fs::path& folder, cons
   const Trajectory gt = ReadTumTrajectory((sequence / "groundtruth.txt").string());
   const Trajectory est = ReadTumTrajectory(run.camera_trajectory_path, /*allow_empty=*/true);
   if (est.size() >= 3) {
-    const AteResult ate = ComputeAte(gt, est, AteOptions{});
-    const RpeResult rpe = ComputeRpe(gt, est, RpeOptions{});
+    AteOptions ate_options;
+    ate_options.sequence_frames = run.sequence_frames;
+    const AteResult ate = ComputeAte(gt, est, ate_options);
+    const std::optional<RpeResult> rpe = ComputeRpeIfLongEnough(gt, est, RpeOptions{});
     result.ate_rmse = ate.errors.rmse;
-    result.rpe_trans_rmse = rpe.trans_rmse;
-    result.rpe_rot_rmse_deg = rpe.rot_rmse_deg;
+    if (rpe) result.rpe_trans_rmse = rpe->trans_rmse;
+    if (rpe) result.rpe_rot_rmse_deg = rpe->rot_rmse_deg;
     WriteEvalReportJson((folder / "eval.json").string(), ate, rpe);
     result.plot_path = (folder / "trajectory.png").string();
     WriteTrajectoryPlot(result.plot_path, gt, est, ate);
@@ -132,9 +134,9 @@ std::string FormatDemoReport(const std::vector<DemoResult>& results) {
     text += "| " + r.run + " | " + std::to_string(r.tracked) + "/" + std::to_string(r.frames) +
             " | " + std::to_string(r.keyframes) + " | " + std::to_string(r.map_points) + " | " +
             (r.ate_rmse >= 0 ? Format("%.2f cm", 100 * r.ate_rmse) : "n/a") + " | " +
-            Format("%.2f cm", 100 * r.rpe_trans_rmse) + " | " +
-            Format("%.3f deg", r.rpe_rot_rmse_deg) + " | " + Format("%.1f", r.median_ms) + " | " +
-            Format("%.1f", r.p95_ms) + " |\n";
+            (r.rpe_trans_rmse ? Format("%.2f cm", 100 * *r.rpe_trans_rmse) : "n/a") + " | " +
+            (r.rpe_rot_rmse_deg ? Format("%.3f deg", *r.rpe_rot_rmse_deg) : "n/a") + " | " +
+            Format("%.1f", r.median_ms) + " | " + Format("%.1f", r.p95_ms) + " |\n";
   }
   text += "\n";
   for (const DemoResult& r : results) {

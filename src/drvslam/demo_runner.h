@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,9 +28,10 @@ struct DemoResult {
   std::size_t tracked = 0;
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
-  double ate_rmse = 0.0;        // m
-  double rpe_trans_rmse = 0.0;  // m per delta
-  double rpe_rot_rmse_deg = 0.0;
+  double ate_rmse = 0.0;  // m
+  // Undefined (n/a) when the run is too short for a pose pair 1 s apart.
+  std::optional<double> rpe_trans_rmse;  // m per delta
+  std::optional<double> rpe_rot_rmse_deg;
   double median_ms = 0.0;  // per frame, whole TrackRGBD
   double p95_ms = 0.0;
   double synth_fps = 0.0;

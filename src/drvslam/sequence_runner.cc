@@ -59,12 +59,18 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   return resolved;
 }
 
-void WriteOutputs(System& system, const fs::path& out_dir, RunSummary* summary) {
+using Clock = std::chrono::steady_clock;
+
+// `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
+void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
+                  RunSummary* summary) {
   // Local mapping finishes its queue first: the trajectories then include its corrections.
   system.Shutdown();
+  summary->wall_s = std::chrono::duration<double>(Clock::now() - started).count();
   // Assembled with the final keyframe poses; stats then count the exported points.
   if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string());
   summary->stats = system.Stats();
+  summary->fps = summary->wall_s > 0.0 ? summary->stats.frames / summary->wall_s : 0.0;
   summary->camera_trajectory_path = (out_dir / "CameraTrajectory.txt").string();
   WriteTumTrajectory(summary->camera_trajectory_path, system.CameraTrajectory(),
                      "drvslam camera trajectory (T_wc), every tracked frame");
@@ -124,10 +130,10 @@ RunSummary RunSequence(const RunOptions& options,
   summary.oracle_masks = dynamic.oracle;
   // --realtime: frames arrive at the dataset's rate, as from a sensor (never when sequential).
   const bool paced = options.dynamic.realtime && !options.sequential;
-  const auto started = std::chrono::steady_clock::now();
-
   std::size_t total = dataset.Size();
   if (options.max_frames > 0 && options.max_frames < total) total = options.max_frames;
+  summary.sequence_frames = total;
+  const Clock::time_point started = Clock::now();
   try {
     for (std::size_t i = 0; i < total; ++i) {
       if (stop && stop->load()) {
@@ -148,10 +154,10 @@ RunSummary RunSequence(const RunOptions& options,
     }
   } catch (const Error&) {
     // Keep what was tracked so far, then report the failure.
-    WriteOutputs(system, out_dir, &summary);
+    WriteOutputs(system, out_dir, started, &summary);
     throw;
   }
-  WriteOutputs(system, out_dir, &summary);
+  WriteOutputs(system, out_dir, started, &summary);
   return summary;
 }
 
@@ -168,7 +174,9 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["relocalization"] = {{"relocalizations", s.relocalizations},
                             {"attempts", s.relocalization_attempts},
                             {"vocabulary_load_ms", s.vocabulary_load_ms}};
-  json["fps"] = s.fps;
+  json["fps"] = summary.fps;
+  json["wall_s"] = summary.wall_s;
+  json["tracking_fps"] = s.tracking_fps;
   json["interrupted"] = summary.interrupted;
   json["settings"] = summary.settings_source;
   json["dynamic_setup"] = summary.dynamic_setup;

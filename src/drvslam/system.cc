@@ -194,7 +194,7 @@ SystemStats System::Stats() const {
   stats.vocabulary_load_ms = vocabulary_load_ms_;
   stats.mapping = local_mapper_.Stats();
   stats.stages = timings_.Summaries();
-  stats.fps = total_ms_ > 0 ? 1000.0 * stats.frames / total_ms_ : 0.0;
+  stats.tracking_fps = total_ms_ > 0 ? 1000.0 * stats.frames / total_ms_ : 0.0;
   if (dynamic_) stats.dynamic = dynamic_->Stats();
   if (dense_) stats.dense = dense_->Stats();
   if (loop_closer_) stats.loop = loop_closer_->Stats();

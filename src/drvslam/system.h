@@ -55,10 +55,12 @@ struct SystemStats {
   double vocabulary_load_ms = 0.0;  // 0 when no vocabulary was loaded
   LocalMappingStats mapping;
   std::map<std::string, TimingSummary> stages;  // per-stage ms
-  double fps = 0.0;                             // frames per second of wall time in TrackRGBD
-  std::optional<DynamicStats> dynamic;          // when dynamic handling ran
-  std::optional<DenseMapStats> dense;           // when dense mapping ran
-  std::optional<LoopClosingStats> loop;         // when loop closing ran
+  // Frames per second of the time spent inside TrackRGBD calls only (not reading images, not
+  // waiting for mapping to drain); a run's wall-clock throughput is RunSummary::fps.
+  double tracking_fps = 0.0;
+  std::optional<DynamicStats> dynamic;   // when dynamic handling ran
+  std::optional<DenseMapStats> dense;    // when dense mapping ran
+  std::optional<LoopClosingStats> loop;  // when loop closing ran
 };
 
 class System {

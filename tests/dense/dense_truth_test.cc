@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+#include <string>
+
 #include "drvslam/core/error.h"
+#include "drvslam/dense/dense_stats_json.h"
 
 namespace drvslam {
 namespace {
@@ -51,19 +55,45 @@ TEST(ScoreDenseCloud, CountsGhostsAndDistances) {
   const DenseTruthScores scores = ScoreDenseCloud(cloud, Floor(), actor, {73}, options);
   EXPECT_EQ(scores.points, cloud.size());
   EXPECT_EQ(scores.ghosts, 10u);
-  EXPECT_NEAR(scores.ghost_share, 10.0 / cloud.size(), 1e-12);
-  EXPECT_NEAR(scores.static_mean_distance, (90 * 0.01 + 0.02) / 92.0, 1e-6);
-  EXPECT_NEAR(scores.median_distance, 0.01, 1e-6);
+  EXPECT_NEAR(scores.ghost_share.value(), 10.0 / cloud.size(), 1e-12);
+  EXPECT_NEAR(scores.static_mean_distance.value(), (90 * 0.01 + 0.02) / 92.0, 1e-6);
+  EXPECT_NEAR(scores.median_distance.value(), 0.01, 1e-6);
   // Ghost points stand 0.5 .. 1.4 m above the floor: capped at max_distance.
-  EXPECT_NEAR(scores.p95_distance, options.max_distance, 1e-9);
+  EXPECT_NEAR(scores.p95_distance.value(), options.max_distance, 1e-9);
   EXPECT_EQ(scores.key_object_points, 1u);
   EXPECT_EQ(scores.background_points, cloud.size() - 1);
 }
 
-TEST(ScoreDenseCloud, EmptyCloudScoresZero) {
+// An empty map has no ghost share or distance to score: undefined (null), not a perfect 0.
+TEST(ScoreDenseCloud, EmptyCloudScoresAreUndefined) {
   const DenseTruthScores scores = ScoreDenseCloud({}, Floor(), {}, {}, DenseTruthOptions());
   EXPECT_EQ(scores.points, 0u);
-  EXPECT_EQ(scores.ghost_share, 0.0);
+  const nlohmann::json json = DenseTruthScoresJson(scores);
+  EXPECT_EQ(json["ghosts"], 0);
+  EXPECT_TRUE(json["ghost_share"].is_null()) << json.dump();
+  for (const char* key : {"mean", "median", "p95", "static_mean", "static_p95"}) {
+    EXPECT_TRUE(json["distance"][key].is_null()) << key << ": " << json.dump();
+  }
+  EXPECT_TRUE(json["key_object_density"].is_null()) << json.dump();
+  EXPECT_TRUE(json["background_density"].is_null()) << json.dump();
+}
+
+// Every point a ghost: no static point is left to measure, so the static distances are
+// undefined rather than 0 m.
+TEST(ScoreDenseCloud, AllGhostsLeaveStaticDistancesUndefined) {
+  const synth::TriangleList actor = {MakeTriangle({1, -0.5, 0}, {1, 0.5, 0}, {1, 0.5, 1.8}),
+                                     MakeTriangle({1, -0.5, 0}, {1, 0.5, 1.8}, {1, -0.5, 1.8})};
+  DenseCloud cloud;
+  for (int i = 0; i < 5; ++i) cloud.push_back(At(1.01, 0.0, 0.5 + 0.1 * i));
+  const DenseTruthScores scores = ScoreDenseCloud(cloud, Floor(), actor, {}, DenseTruthOptions());
+  ASSERT_EQ(scores.ghosts, 5u);
+  const nlohmann::json json = DenseTruthScoresJson(scores);
+  EXPECT_NEAR(json["ghost_share"].get<double>(), 1.0, 1e-12);
+  EXPECT_TRUE(json["distance"]["static_mean"].is_null()) << json.dump();
+  EXPECT_TRUE(json["distance"]["static_p95"].is_null()) << json.dump();
+  EXPECT_TRUE(json["key_object_density"].is_null()) << json.dump();
+  const std::string text = FormatDenseTruthScores(scores);
+  EXPECT_NE(text.find("without ghosts:    mean n/a, p95 n/a"), std::string::npos) << text;
 }
 
 TEST(AlignCloudToTruth, UndoesTheEstimateFrame) {

@@ -96,10 +96,46 @@ TEST(ComputeAteTest, EstimateWithMissingPosesMatchesWhatItHas) {
   const AteResult ate = ComputeAte(gt, InOtherWorld(est, SomeWorldChange()), AteOptions{});
   EXPECT_EQ(ate.matched, 24u);
   EXPECT_LT(ate.errors.rmse, 1e-9);
-  // Matched ground truth runs from pose 10 to pose 79 of 0..99.
-  EXPECT_NEAR(ate.coverage, 69.0 / 99.0, 1e-9);
+  // 24 of the 100 ground-truth poses have an estimate.
+  EXPECT_NEAR(ate.coverage, 24.0 / 100.0, 1e-12);
+  EXPECT_EQ(ate.coverage_of, CoverageOf::kGroundTruthPoses);
   EXPECT_DOUBLE_EQ(ate.matches.front().gt_stamp, gt[10].timestamp);
   EXPECT_DOUBLE_EQ(ate.matches.back().gt_stamp, gt[79].timestamp);
+}
+
+// Lost in the middle: the matched poses still span the whole ground truth, but only 60 of its
+// 100 poses have an estimate, and coverage must say so.
+TEST(ComputeAteTest, CoverageShowsARunLostInTheMiddle) {
+  const Trajectory gt = MakeTrajectory(100, 50.0, 0.1, HelixPose);
+  Trajectory est;
+  for (std::size_t k = 0; k < gt.size(); ++k) {
+    if (k < 30 || k >= 70) est.push_back(gt[k]);
+  }
+  const AteResult ate = ComputeAte(gt, est, AteOptions{});
+  EXPECT_EQ(ate.matched, 60u);
+  EXPECT_NEAR(ate.coverage, 0.6, 1e-12);
+}
+
+// Ground truth at 100 Hz, images at 25 Hz (every 4th stamp): 40 of the sequence's 50 frames were
+// tracked. Against the ground truth's poses the same run would show 20 %.
+TEST(ComputeAteTest, CoverageIsOfTheSequencesFramesWhenTheCallerKnowsThem) {
+  const Trajectory gt = MakeTrajectory(200, 50.0, 0.01, HelixPose);
+  Trajectory est;
+  for (std::size_t k = 0; k < 160; k += 4) est.push_back(gt[k]);
+  AteOptions options;
+  options.sequence_frames = 50;
+  const AteResult ate = ComputeAte(gt, est, options);
+  EXPECT_EQ(ate.matched, 40u);
+  EXPECT_NEAR(ate.coverage, 0.8, 1e-12);
+  EXPECT_EQ(ate.coverage_of, CoverageOf::kSequenceFrames);
+  EXPECT_STREQ(CoverageOfName(ate.coverage_of), "sequence_frames");
+  const AteResult unknown = ComputeAte(gt, est, AteOptions{});
+  EXPECT_NEAR(unknown.coverage, 0.2, 1e-12);
+  EXPECT_STREQ(CoverageOfName(unknown.coverage_of), "ground_truth_poses");
+  // More matched poses than frames: the frame count belongs to another sequence.
+  options.sequence_frames = 39;
+  EXPECT_NE(MessageOf([&] { ComputeAte(gt, est, options); }).find("--frames 39"),
+            std::string::npos);
 }
 
 TEST(ComputeAteTest, JitterInsideTheWindowMatchesOutsideDoesNot) {

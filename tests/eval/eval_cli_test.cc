@@ -91,6 +91,70 @@ TEST_F(EvalCliTest, WritesJsonWithTheContractKeysAndAPlot) {
   EXPECT_GT(fs::file_size(plot_path), 10000u);
 }
 
+// Without a frame count, coverage is matched over ground-truth poses, and both outputs say so.
+TEST_F(EvalCliTest, WithoutAFrameCountCoverageIsOfGroundTruthPoses) {
+  const std::string json_path = (dir_ / "eval.json").string();
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --json " + json_path);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("of ground-truth poses"), std::string::npos) << run.output;
+  std::ifstream in(json_path);
+  const nlohmann::json json = nlohmann::json::parse(in);
+  EXPECT_EQ(json["ate"]["coverage_of"], "ground_truth_poses");
+  EXPECT_NEAR(json["ate"]["coverage"].get<double>(), 1.0, 1e-12);
+}
+
+TEST_F(EvalCliTest, FramesMakeCoverageOfTheSequencesFrames) {
+  const std::string json_path = (dir_ / "eval.json").string();
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --frames 300 --json " + json_path);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("50.00 %  (of the sequence's frames)"), std::string::npos)
+      << run.output;
+  std::ifstream in(json_path);
+  const nlohmann::json json = nlohmann::json::parse(in);
+  EXPECT_EQ(json["ate"]["coverage_of"], "sequence_frames");
+  EXPECT_NEAR(json["ate"]["coverage"].get<double>(), 150.0 / 300.0, 1e-12);
+}
+
+// --dataset counts the frames `drvslam run` would process: the colour images paired with depth.
+TEST_F(EvalCliTest, DatasetGivesTheSequencesFrameCount) {
+  const fs::path sequence = dir_ / "sequence";
+  fs::create_directories(sequence);
+  std::ofstream rgb(sequence / "rgb.txt"), depth(sequence / "depth.txt");
+  rgb << "# colour images\n";
+  for (int k = 0; k < 200; ++k) {
+    const std::string stamp = std::to_string(1000.0 + k / 30.0);
+    rgb << stamp << " rgb/" << k << ".png\n";
+    depth << stamp << " depth/" << k << ".png\n";
+  }
+  rgb.close();
+  depth.close();
+  const std::string json_path = (dir_ / "eval.json").string();
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --dataset " + sequence.string() +
+                            " --json " + json_path);
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream in(json_path);
+  const nlohmann::json json = nlohmann::json::parse(in);
+  EXPECT_EQ(json["ate"]["coverage_of"], "sequence_frames");
+  EXPECT_NEAR(json["ate"]["coverage"].get<double>(), 150.0 / 200.0, 1e-12);
+}
+
+TEST_F(EvalCliTest, DatasetWithoutFrameListIsAnError) {
+  const fs::path sequence = dir_ / "empty_sequence";
+  fs::create_directories(sequence);
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --dataset " + sequence.string());
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("rgb.txt"), std::string::npos) << run.output;
+}
+
+TEST_F(EvalCliTest, FewerFramesThanMatchedPosesIsAnError) {
+  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --frames 100");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("error: ATE: --frames 100 is fewer than the 150 matched poses"),
+            std::string::npos)
+      << run.output;
+}
+
 TEST_F(EvalCliTest, MissingFileIsAnError) {
   const CliRun run = RunCli("eval " + gt_ + " " + (dir_ / "no-such-file.txt").string());
   EXPECT_EQ(run.status, 2) << run.output;

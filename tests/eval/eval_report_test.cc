@@ -44,8 +44,9 @@ std::set<std::string> Keys(const nlohmann::json& object) {
 TEST(EvalReportTest, JsonHasExactlyTheContractKeys) {
   const nlohmann::json json = EvalReportJson(SomeAte(), SomeRpe());
   EXPECT_EQ(Keys(json), (std::set<std::string>{"ate", "rpe"}));
-  EXPECT_EQ(Keys(json["ate"]), (std::set<std::string>{"rmse", "mean", "median", "std", "min", "max",
-                                                      "matched", "coverage", "scale"}));
+  EXPECT_EQ(Keys(json["ate"]),
+            (std::set<std::string>{"rmse", "mean", "median", "std", "min", "max", "matched",
+                                   "coverage", "coverage_of", "scale"}));
   EXPECT_EQ(Keys(json["rpe"]), (std::set<std::string>{"trans_rmse", "rot_rmse_deg", "trans_mean",
                                                       "rot_mean_deg", "pairs", "delta"}));
   EXPECT_DOUBLE_EQ(json["ate"]["rmse"].get<double>(), 0.0123);
@@ -79,6 +80,26 @@ TEST(EvalReportTest, TableShowsMetresCentimetresAndCounts) {
   EXPECT_NE(table.find("97.00 %"), std::string::npos) << table;
   EXPECT_NE(table.find("0.600000 deg"), std::string::npos) << table;
   EXPECT_NE(table.find("rigid"), std::string::npos) << table;
+}
+
+TEST(EvalReportTest, CoverageSaysWhatItCountsAgainst) {
+  AteResult ate = SomeAte();
+  EXPECT_EQ(EvalReportJson(ate, SomeRpe())["ate"]["coverage_of"], "ground_truth_poses");
+  EXPECT_NE(FormatEvalTable(ate, SomeRpe()).find("97.00 %  (of ground-truth poses)"),
+            std::string::npos);
+  ate.coverage_of = CoverageOf::kSequenceFrames;
+  EXPECT_EQ(EvalReportJson(ate, SomeRpe())["ate"]["coverage_of"], "sequence_frames");
+  EXPECT_NE(FormatEvalTable(ate, SomeRpe()).find("97.00 %  (of the sequence's frames)"),
+            std::string::npos);
+}
+
+TEST(EvalReportTest, NoRpeIsNullAndNotAvailable) {
+  const nlohmann::json json = EvalReportJson(SomeAte(), std::nullopt);
+  EXPECT_TRUE(json["rpe"].is_null()) << json.dump();
+  EXPECT_DOUBLE_EQ(json["ate"]["rmse"].get<double>(), 0.0123);
+  const std::string table = FormatEvalTable(SomeAte(), std::nullopt);
+  EXPECT_NE(table.find("Relative pose error: n/a"), std::string::npos) << table;
+  EXPECT_EQ(table.find("pose pairs "), std::string::npos) << table;
 }
 
 }  // namespace

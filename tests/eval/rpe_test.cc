@@ -163,5 +163,27 @@ TEST(ComputeRpeTest, BadInputIsAnError) {
   EXPECT_THROW(ComputeRpe(gt, Trajectory{}, RpeOptions{}), Error);
 }
 
+TEST(ComputeRpeTest, TooShortToEvaluateIsUndefinedNotAnError) {
+  // 0.45 s of poses against a 1 s delta: no pair.
+  const Trajectory short_one = MakeTrajectory(10, 0.0, 0.05, HelixPose);
+  EXPECT_FALSE(ComputeRpeIfLongEnough(short_one, short_one, RpeOptions{}).has_value());
+  // Long enough: the same numbers as ComputeRpe.
+  const Trajectory gt = MakeTrajectory(60, 0.0, 0.1, HelixPose);
+  Trajectory est = gt;
+  for (std::size_t k = 0; k < est.size(); ++k) {
+    est[k].T_wc = SE3(est[k].T_wc.Quaternion(), est[k].T_wc.Translation() * (1.0 + 0.01 * k));
+  }
+  const std::optional<RpeResult> rpe = ComputeRpeIfLongEnough(gt, est, RpeOptions{});
+  ASSERT_TRUE(rpe.has_value());
+  const RpeResult reference = ComputeRpe(gt, est, RpeOptions{});
+  EXPECT_EQ(rpe->pairs, reference.pairs);
+  EXPECT_DOUBLE_EQ(rpe->trans_rmse, reference.trans_rmse);
+  EXPECT_GT(rpe->trans_rmse, 0.0);
+  // Other bad input is still an error.
+  Trajectory later = gt;
+  for (StampedPose& pose : later) pose.timestamp += 1000.0;
+  EXPECT_THROW(ComputeRpeIfLongEnough(gt, later, RpeOptions{}), Error);
+}
+
 }  // namespace
 }  // namespace drvslam

@@ -32,6 +32,7 @@ TEST(DemoTest, RunsEachScenarioAndTheBaselineAndWritesTheReport) {
     EXPECT_GE(result.tracked, 39u) << result.run;
     EXPECT_GT(result.ate_rmse, 0.0) << result.run;
     EXPECT_LT(result.ate_rmse, 0.05) << result.run;
+    EXPECT_TRUE(result.rpe_trans_rmse.has_value()) << result.run;  // 40 frames span 1.3 s
     EXPECT_TRUE(fs::exists(result.plot_path)) << result.plot_path;
     EXPECT_TRUE(fs::exists(root / result.plot_in_report)) << result.plot_in_report;
   }
@@ -65,6 +66,52 @@ TEST(DemoTest, ReportSaysWhenATrajectoryIsTooShortToEvaluate) {
   // Only runs with a plot get a section.
   EXPECT_NE(report.find("## static_xyz"), std::string::npos);
   EXPECT_EQ(report.find("## walking_xyz"), std::string::npos);
+}
+
+// A run with no RPE (too short to evaluate) shows n/a in both RPE columns, never 0.00.
+TEST(DemoTest, ReportShowsMissingRpeAsNotAvailable) {
+  DemoResult lost;
+  lost.run = "walking_xyz, dynamic off";
+  lost.frames = 40;
+  lost.tracked = 2;
+  lost.ate_rmse = -1.0;
+  const std::string report = FormatDemoReport({lost});
+  const std::size_t row = report.find("| walking_xyz, dynamic off |");
+  ASSERT_NE(row, std::string::npos) << report;
+  const std::string line = report.substr(row, report.find('\n', row) - row);
+  EXPECT_EQ(line.find("0.00 cm"), std::string::npos) << line;
+  EXPECT_EQ(line.find("0.000 deg"), std::string::npos) << line;
+  int not_available = 0;
+  for (std::size_t at = line.find("| n/a |"); at != std::string::npos;
+       at = line.find("| n/a |", at + 1)) {
+    ++not_available;
+  }
+  EXPECT_EQ(not_available, 3) << line;  // ATE, RPE translation, RPE rotation
+}
+
+// 10 frames at 30 Hz span 0.3 s, less than RPE's 1 s delta: ATE is evaluated, RPE is n/a, and the
+// demo finishes instead of failing on the RPE error.
+TEST(DemoTest, RunShorterThanTheRpeDeltaIsEvaluatedWithoutRpe) {
+  const fs::path root = test::FreshTempFolder("drvslam_demo_short_test");
+  DemoOptions options;
+  options.out_dir = root.string();
+  options.frames = 10;
+  options.scenarios = {"static_xyz"};
+  options.baseline = false;
+  std::vector<DemoResult> results;
+  ASSERT_NO_THROW(results = RunDemo(options));
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_GE(results[0].tracked, 9u);
+  EXPECT_GE(results[0].ate_rmse, 0.0);
+  EXPECT_LT(results[0].ate_rmse, 0.05);
+  EXPECT_FALSE(results[0].rpe_trans_rmse.has_value());
+  EXPECT_FALSE(results[0].rpe_rot_rmse_deg.has_value());
+  const std::string report = test::ReadFile(root / "report.md");
+  const std::size_t row = report.find("| static_xyz |");
+  ASSERT_NE(row, std::string::npos) << report;
+  const std::string line = report.substr(row, report.find('\n', row) - row);
+  EXPECT_NE(line.find(" cm | n/a | n/a |"), std::string::npos) << line;
+  fs::remove_all(root);
 }
 
 TEST(DemoTest, TooFewFramesIsAnError) {

@@ -67,8 +67,8 @@ TEST_F(DynamicIntegrationTest, DynamicHandlingTracksEveryFrameAndBeatsPlainTrack
   EXPECT_GT(on.stats.dynamic->removed_on_objects, 1000u);
   ASSERT_TRUE(on.motion_states.has_value());
   EXPECT_GT(on.motion_states->judged, 50u);
-  EXPECT_GT(on.motion_states->shipped.Precision(), 0.9);
-  EXPECT_GT(on.motion_states->shipped.Recall(), 0.6);
+  EXPECT_GT(on.motion_states->shipped.Precision().value_or(0.0), 0.9);
+  EXPECT_GT(on.motion_states->shipped.Recall().value_or(0.0), 0.6);
 
   const nlohmann::json stats = nlohmann::json::parse(test::ReadFile(root_ / "on" / "stats.json"));
   EXPECT_EQ(stats["dynamic_setup"], "segmenter gt, dynamic on");

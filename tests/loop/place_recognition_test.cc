@@ -118,6 +118,17 @@ TEST(PlaceRecognitionTest, RanksAndSummariesOnAHandMadeSet) {
   EXPECT_THROW(EvaluatePlaceRecognition(vocabulary, set), Error);
 }
 
+// No query, nothing to rank: an empty result would report a mean rank of 0 (better than the
+// best) and a recall of 0, so it is an error instead.
+TEST(PlaceRecognitionTest, SetWithoutQueriesIsAnError) {
+  const BowVocabulary vocabulary = test::TinyVocabulary();
+  PlaceRecognitionSet set;
+  cv::Mat image;
+  image.push_back(test::FilledRow(0x00));
+  set.database.push_back(image);
+  EXPECT_THROW(EvaluatePlaceRecognition(vocabulary, set), Error);
+}
+
 // A TUM-layout sequence of eight frames, one per second: frame 6 returns to frame 0's place
 // (10 cm away, same orientation) and shows the same texture; frame 7 stands where frame 1 did
 // but turned by 90 degrees. Every other frame is elsewhere with a texture of its own.

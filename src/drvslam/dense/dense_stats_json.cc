@@ -16,9 +16,12 @@ nlohmann::json DenseStatsJson(const DenseMapStats& s) {
   json["memory_megabytes"] = s.memory_megabytes;
   json["full_resolution_points"] = s.full_resolution_points;
   json["full_resolution_megabytes"] = s.full_resolution_points * kPlyBytesPerPoint / megabyte;
-  json["reduction"] = s.full_resolution_points > 0
-                          ? 1.0 - static_cast<double>(s.exported_points) / s.full_resolution_points
-                          : 0.0;
+  // Undefined (null) before any keyframe was integrated: there is nothing to reduce.
+  json["reduction_vs_full_resolution"] =
+      s.full_resolution_points > 0
+          ? nlohmann::json(1.0 - static_cast<double>(s.exported_points) / s.full_resolution_points)
+          : nlohmann::json(nullptr);
+  json["reduction_baseline"] = kDenseReductionBaseline;
   json["resets"] = s.resets;
   json["keyframe_ms"] = {{"median", s.keyframe_ms.median_ms},
                          {"p95", s.keyframe_ms.p95_ms},
@@ -29,19 +32,22 @@ nlohmann::json DenseStatsJson(const DenseMapStats& s) {
 }
 
 nlohmann::json DenseTruthScoresJson(const DenseTruthScores& s) {
+  const auto or_null = [](const std::optional<double>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+  };
   nlohmann::json json;
   json["points"] = s.points;
   json["ghosts"] = s.ghosts;
-  json["ghost_share"] = s.ghost_share;
-  json["distance"] = {{"mean", s.mean_distance},
-                      {"median", s.median_distance},
-                      {"p95", s.p95_distance},
-                      {"static_mean", s.static_mean_distance},
-                      {"static_p95", s.static_p95_distance}};
+  json["ghost_share"] = or_null(s.ghost_share);
+  json["distance"] = {{"mean", or_null(s.mean_distance)},
+                      {"median", or_null(s.median_distance)},
+                      {"p95", or_null(s.p95_distance)},
+                      {"static_mean", or_null(s.static_mean_distance)},
+                      {"static_p95", or_null(s.static_p95_distance)}};
   json["key_object_points"] = s.key_object_points;
   json["background_points"] = s.background_points;
-  json["key_object_density"] = s.key_object_density;
-  json["background_density"] = s.background_density;
+  json["key_object_density"] = or_null(s.key_object_density);
+  json["background_density"] = or_null(s.background_density);
   return json;
 }
 

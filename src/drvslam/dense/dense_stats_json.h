@@ -11,13 +11,19 @@ namespace drvslam {
 
 // {"frames", "keyframes", "enhancement_frames", "points", "background_points", "object_points",
 //  "exported_points", "megabytes" (exported points as binary PLY records), "memory_megabytes",
-//  "full_resolution_points", "full_resolution_megabytes", "reduction" (1 - exported / full),
-//  "resets", "keyframe_ms": {"median", "p95", "mean", "max", "count"}}
+//  "full_resolution_points", "full_resolution_megabytes", "reduction_vs_full_resolution"
+//  (1 - exported / full_resolution_points; null with no keyframe), "reduction_baseline" (the
+//  words of kDenseReductionBaseline), "resets", "keyframe_ms": {"median", "p95", "mean", "max",
+//  "count"}}
 nlohmann::json DenseStatsJson(const DenseMapStats& stats);
+
+// What the dense map's point count is reduced against (DenseMapStats::full_resolution_points).
+inline constexpr const char* kDenseReductionBaseline =
+    "full resolution: one point per valid, non-excluded depth pixel of every integrated keyframe";
 
 // {"points", "ghosts", "ghost_share", "distance": {"mean", "median", "p95", "static_mean",
 //  "static_p95"}, "key_object_points", "background_points", "key_object_density",
-//  "background_density"}
+//  "background_density"}; a value over no points is null
 nlohmann::json DenseTruthScoresJson(const DenseTruthScores& scores);
 
 // Bytes of one point in dense_map.ply (x y z float, r g b uchar, label short).

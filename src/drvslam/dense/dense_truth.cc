@@ -59,28 +59,29 @@ class PointGrid {
   std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
 };
 
-double Percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
+std::optional<double> Percentile(std::vector<double> values, double q) {
+  if (values.empty()) return std::nullopt;
   const std::size_t k =
       std::min(values.size() - 1, static_cast<std::size_t>(std::ceil(q * values.size())) - 1);
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
   return values[k];
 }
 
-double Mean(const std::vector<double>& values) {
-  if (values.empty()) return 0.0;
+std::optional<double> Mean(const std::vector<double>& values) {
+  if (values.empty()) return std::nullopt;
   double sum = 0.0;
   for (const double v : values) sum += v;
   return sum / static_cast<double>(values.size());
 }
 
-double PointsPerCell(const DenseCloud& cloud, double cell) {
-  if (cloud.empty()) return 0.0;
+std::optional<double> PointsPerCell(const DenseCloud& cloud, double cell) {
+  if (cloud.empty()) return std::nullopt;
   std::unordered_map<int64_t, int> cells;
   for (const DensePoint& p : cloud) {
     if (const std::optional<int64_t> key = VoxelKey(p.position, cell)) ++cells[*key];
   }
-  return cells.empty() ? 0.0 : static_cast<double>(cloud.size()) / cells.size();
+  if (cells.empty()) return std::nullopt;
+  return static_cast<double>(cloud.size()) / cells.size();
 }
 
 }  // namespace
@@ -230,18 +231,27 @@ DenseCloud AlignCloudToTruth(const DenseCloud& cloud, const Trajectory& estimate
 }
 
 std::string FormatDenseTruthScores(const DenseTruthScores& s) {
-  char text[1024];
-  std::snprintf(text, sizeof(text),
-                "points:              %zu\n"
-                "ghosts:              %zu (%.4f%%)\n"
-                "distance to truth:   mean %.4f m, median %.4f m, p95 %.4f m\n"
-                "  without ghosts:    mean %.4f m, p95 %.4f m\n"
-                "key-object points:   %zu (%.2f per occupied cell)\n"
-                "background points:   %zu (%.2f per occupied cell)\n",
-                s.points, s.ghosts, 100.0 * s.ghost_share, s.mean_distance, s.median_distance,
-                s.p95_distance, s.static_mean_distance, s.static_p95_distance, s.key_object_points,
-                s.key_object_density, s.background_points, s.background_density);
-  return text;
+  // `format` takes one double (the value times `scale`); n/a when the value is undefined.
+  const auto text = [](const char* format, const std::optional<double>& value,
+                       double scale = 1.0) -> std::string {
+    if (!value) return "n/a";
+    char buffer[64];
+    std::snprintf(buffer, sizeof(buffer), format, scale * value.value());
+    return buffer;
+  };
+  std::string out;
+  out += "points:              " + std::to_string(s.points) + "\n";
+  out += "ghosts:              " + std::to_string(s.ghosts) + " (" +
+         text("%.4f%%", s.ghost_share, 100.0) + ")\n";
+  out += "distance to truth:   mean " + text("%.4f m", s.mean_distance) + ", median " +
+         text("%.4f m", s.median_distance) + ", p95 " + text("%.4f m", s.p95_distance) + "\n";
+  out += "  without ghosts:    mean " + text("%.4f m", s.static_mean_distance) + ", p95 " +
+         text("%.4f m", s.static_p95_distance) + "\n";
+  out += "key-object points:   " + std::to_string(s.key_object_points) + " (" +
+         text("%.2f", s.key_object_density) + " per occupied cell)\n";
+  out += "background points:   " + std::to_string(s.background_points) + " (" +
+         text("%.2f", s.background_density) + " per occupied cell)\n";
+  return out;
 }
 
 }  // namespace drvslam

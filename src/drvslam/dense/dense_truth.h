@@ -5,6 +5,7 @@
 // from the Synth.* keys of its settings.yaml.
 #pragma once
 
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -30,21 +31,23 @@ struct DenseTruthOptions {
   int actor_frame_stride = 1;
 };
 
+// A ratio or statistic over no points is undefined (nullopt), not 0: an empty map has no ghosts
+// to count and no distance to measure, and must not score as a perfect one.
 struct DenseTruthScores {
   std::size_t points = 0;
   std::size_t ghosts = 0;
-  double ghost_share = 0.0;
+  std::optional<double> ghost_share;
   // Distance to the nearest static surface (capped at max_distance).
-  double mean_distance = 0.0;
-  double median_distance = 0.0;
-  double p95_distance = 0.0;
+  std::optional<double> mean_distance;
+  std::optional<double> median_distance;
+  std::optional<double> p95_distance;
   // The same over the points that are not ghosts.
-  double static_mean_distance = 0.0;
-  double static_p95_distance = 0.0;
+  std::optional<double> static_mean_distance;
+  std::optional<double> static_p95_distance;
   std::size_t key_object_points = 0;  // labelled with a key-object class
   std::size_t background_points = 0;
-  double key_object_density = 0.0;  // points per occupied density cell
-  double background_density = 0.0;
+  std::optional<double> key_object_density;  // points per occupied density cell
+  std::optional<double> background_density;
 };
 
 // Scores world points (in the ground-truth frame). `key_labels`: class ids of key objects.

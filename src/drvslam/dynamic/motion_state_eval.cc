@@ -2,6 +2,19 @@
 
 namespace drvslam {
 
+namespace {
+
+std::optional<double> Ratio(std::size_t part, std::size_t whole) {
+  if (whole == 0) return std::nullopt;
+  return static_cast<double>(part) / static_cast<double>(whole);
+}
+
+nlohmann::json OrNull(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
 void Confusion::Add(bool truth, bool judged) {
   if (truth && judged) ++true_positive;
   if (!truth && judged) ++false_positive;
@@ -9,19 +22,17 @@ void Confusion::Add(bool truth, bool judged) {
   if (truth && !judged) ++false_negative;
 }
 
-double Confusion::Precision() const {
-  const std::size_t judged = true_positive + false_positive;
-  return judged > 0 ? static_cast<double>(true_positive) / judged : 1.0;
+std::optional<double> Confusion::Precision() const {
+  return Ratio(true_positive, true_positive + false_positive);
 }
 
-double Confusion::Recall() const {
-  const std::size_t moving = true_positive + false_negative;
-  return moving > 0 ? static_cast<double>(true_positive) / moving : 1.0;
+std::optional<double> Confusion::Recall() const {
+  return Ratio(true_positive, true_positive + false_negative);
 }
 
-double Confusion::Accuracy() const {
-  const std::size_t all = true_positive + false_positive + true_negative + false_negative;
-  return all > 0 ? static_cast<double>(true_positive + true_negative) / all : 1.0;
+std::optional<double> Confusion::Accuracy() const {
+  return Ratio(true_positive + true_negative,
+               true_positive + false_positive + true_negative + false_negative);
 }
 
 void MotionStateEvaluator::Add(const DynamicFrameReport& report, const MotionTruth& truth) {
@@ -47,9 +58,13 @@ void MotionStateEvaluator::Add(const DynamicFrameReport& report, const MotionTru
 }
 
 nlohmann::json ConfusionJson(const Confusion& c) {
-  return {{"tp", c.true_positive},   {"fp", c.false_positive},     {"tn", c.true_negative},
-          {"fn", c.false_negative},  {"precision", c.Precision()}, {"recall", c.Recall()},
-          {"accuracy", c.Accuracy()}};
+  return {{"tp", c.true_positive},
+          {"fp", c.false_positive},
+          {"tn", c.true_negative},
+          {"fn", c.false_negative},
+          {"precision", OrNull(c.Precision())},
+          {"recall", OrNull(c.Recall())},
+          {"accuracy", OrNull(c.Accuracy())}};
 }
 
 nlohmann::json MotionStateScoresJson(const MotionStateScores& s) {

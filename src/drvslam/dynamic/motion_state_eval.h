@@ -20,10 +20,11 @@ struct Confusion {
   std::size_t false_negative = 0;
 
   void Add(bool truth, bool judged);
-  // 1 when nothing was judged moving / nothing moved (no errors of that kind were possible).
-  double Precision() const;
-  double Recall() const;
-  double Accuracy() const;
+  // Undefined (nullopt) when there is nothing to score: precision when nothing was judged
+  // moving, recall when nothing moved, accuracy when nothing was judged at all.
+  std::optional<double> Precision() const;
+  std::optional<double> Recall() const;
+  std::optional<double> Accuracy() const;
 };
 
 struct MotionStateScores {
@@ -50,6 +51,7 @@ class MotionStateEvaluator {
   MotionStateScores scores_;
 };
 
+// {"tp", "fp", "tn", "fn", "precision", "recall", "accuracy"}; an undefined ratio is null.
 nlohmann::json ConfusionJson(const Confusion& confusion);
 nlohmann::json MotionStateScoresJson(const MotionStateScores& scores);
 

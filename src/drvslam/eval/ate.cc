@@ -20,6 +20,10 @@ std::vector<double> Stamps(const Trajectory& trajectory) {
 
 }  // namespace
 
+const char* CoverageOfName(CoverageOf of) {
+  return of == CoverageOf::kSequenceFrames ? "sequence_frames" : "ground_truth_poses";
+}
+
 void AteOptions::Check() const {
   if (!std::isfinite(max_difference) || max_difference <= 0.0) {
     std::ostringstream message;
@@ -82,11 +86,20 @@ AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptio
   }
   result.errors = ComputeErrorStatistics(errors);
 
-  const auto [gt_first, gt_last] = std::minmax_element(gt_stamps.begin(), gt_stamps.end());
-  const double gt_span = *gt_last - *gt_first;
-  // Matches are sorted by ground-truth stamp.
-  const double matched_span = result.matches.back().gt_stamp - result.matches.front().gt_stamp;
-  result.coverage = gt_span > 0.0 ? matched_span / gt_span : 1.0;
+  // Counted, not spanned: a run lost in the middle still matches the first and last stamps.
+  if (options.sequence_frames > 0) {
+    if (result.matched > options.sequence_frames) {
+      throw Error("ATE: --frames " + std::to_string(options.sequence_frames) +
+                  " is fewer than the " + std::to_string(result.matched) +
+                  " matched poses; is it the frame count of this sequence?");
+    }
+    result.coverage = static_cast<double>(result.matched) / options.sequence_frames;
+    result.coverage_of = CoverageOf::kSequenceFrames;
+  } else {
+    // Association is one to one, so matched <= gt.size().
+    result.coverage = static_cast<double>(result.matched) / gt.size();
+    result.coverage_of = CoverageOf::kGroundTruthPoses;
+  }
   return result;
 }
 

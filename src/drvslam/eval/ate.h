@@ -20,6 +20,11 @@ struct AteOptions {
   // Similarity alignment (Umeyama scale), for systems without metric scale. The TUM script and
   // RGB-D evaluation use a rigid alignment (scale 1).
   bool with_scale = false;
+  // Frames of the sequence the estimate was made from (`drvslam eval --frames` / `--dataset`);
+  // coverage counts matched poses against them. 0 = unknown: coverage counts against the
+  // ground-truth poses instead (TUM ground truth is 100 Hz against 30 Hz images, so that share
+  // stays well below 1 however well a run tracks).
+  std::size_t sequence_frames = 0;
 
   // Throws Error naming the option (--max-diff, --offset) when a value is unusable.
   void Check() const;
@@ -34,19 +39,28 @@ struct AteMatch {
   double error = 0.0;                                     // |est_aligned - gt_position|, m
 };
 
+// What ATE coverage counts matched poses against.
+enum class CoverageOf { kSequenceFrames, kGroundTruthPoses };
+
+// "sequence_frames" or "ground_truth_poses" (the JSON value).
+const char* CoverageOfName(CoverageOf of);
+
 struct AteResult {
   Alignment alignment;      // estimate frame -> ground-truth frame
   bool with_scale = false;  // whether alignment.scale was estimated (else it is 1)
   ErrorStatistics errors;   // over matches, metres
   std::size_t matched = 0;
-  // Share of the ground truth's time span between the first and last matched ground-truth stamp:
-  // a system that loses track early scores a low coverage, however small its error.
+  // Matched poses over the sequence's frames (or the ground-truth poses, see coverage_of): a
+  // system that loses track, early or in the middle, scores a low coverage, however small its
+  // error.
   double coverage = 0.0;
+  CoverageOf coverage_of = CoverageOf::kGroundTruthPoses;
   std::vector<AteMatch> matches;  // ascending ground-truth stamp
 };
 
-// Throws Error when the options are bad, when no stamps associate within max_difference, or when
-// fewer than 3 pairs associate (too few to fix a 3-D alignment).
+// Throws Error when the options are bad, when no stamps associate within max_difference, when
+// fewer than 3 pairs associate (too few to fix a 3-D alignment), or when more poses match than
+// options.sequence_frames (a known frame count that is wrong, named as --frames).
 AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptions& options);
 
 }  // namespace drvslam

@@ -26,19 +26,30 @@ std::string MetresRow(const char* name, double metres) {
 
 }  // namespace
 
-nlohmann::json EvalReportJson(const AteResult& ate, const RpeResult& rpe) {
+nlohmann::json EvalReportJson(const AteResult& ate, const std::optional<RpeResult>& rpe) {
   nlohmann::json json;
-  json["ate"] = {
-      {"rmse", ate.errors.rmse}, {"mean", ate.errors.mean},  {"median", ate.errors.median},
-      {"std", ate.errors.std},   {"min", ate.errors.min},    {"max", ate.errors.max},
-      {"matched", ate.matched},  {"coverage", ate.coverage}, {"scale", ate.alignment.scale}};
-  json["rpe"] = {{"trans_rmse", rpe.trans_rmse}, {"rot_rmse_deg", rpe.rot_rmse_deg},
-                 {"trans_mean", rpe.trans_mean}, {"rot_mean_deg", rpe.rot_mean_deg},
-                 {"pairs", rpe.pairs},           {"delta", rpe.delta}};
+  json["ate"] = {{"rmse", ate.errors.rmse},
+                 {"mean", ate.errors.mean},
+                 {"median", ate.errors.median},
+                 {"std", ate.errors.std},
+                 {"min", ate.errors.min},
+                 {"max", ate.errors.max},
+                 {"matched", ate.matched},
+                 {"coverage", ate.coverage},
+                 {"coverage_of", CoverageOfName(ate.coverage_of)},
+                 {"scale", ate.alignment.scale}};
+  if (rpe) {
+    json["rpe"] = {{"trans_rmse", rpe->trans_rmse}, {"rot_rmse_deg", rpe->rot_rmse_deg},
+                   {"trans_mean", rpe->trans_mean}, {"rot_mean_deg", rpe->rot_mean_deg},
+                   {"pairs", rpe->pairs},           {"delta", rpe->delta}};
+  } else {
+    json["rpe"] = nullptr;
+  }
   return json;
 }
 
-void WriteEvalReportJson(const std::string& path, const AteResult& ate, const RpeResult& rpe) {
+void WriteEvalReportJson(const std::string& path, const AteResult& ate,
+                         const std::optional<RpeResult>& rpe) {
   std::ofstream out(path);
   if (!out) throw Error(path + ": cannot open the --json file for writing");
   out << EvalReportJson(ate, rpe).dump(2) << "\n";
@@ -46,7 +57,7 @@ void WriteEvalReportJson(const std::string& path, const AteResult& ate, const Rp
   if (!out) throw Error(path + ": writing the --json file failed");
 }
 
-std::string FormatEvalTable(const AteResult& ate, const RpeResult& rpe) {
+std::string FormatEvalTable(const AteResult& ate, const std::optional<RpeResult>& rpe) {
   std::string table;
   table += Printf("Absolute trajectory error (%s alignment, scale %.6f)\n",
                   ate.with_scale ? "similarity" : "rigid", ate.alignment.scale);
@@ -57,14 +68,19 @@ std::string FormatEvalTable(const AteResult& ate, const RpeResult& rpe) {
   table += MetresRow("min", ate.errors.min);
   table += MetresRow("max", ate.errors.max);
   table += Printf("  %-22s %12zu\n", "matched poses", ate.matched);
-  table += Printf("  %-22s %12.2f %%  (of the ground truth's time span)\n", "coverage",
-                  100.0 * ate.coverage);
-  table += Printf("Relative pose error (delta %.3f s)\n", rpe.delta);
-  table += MetresRow("translation rmse", rpe.trans_rmse);
-  table += MetresRow("translation mean", rpe.trans_mean);
-  table += Printf("  %-22s %12.6f deg\n", "rotation rmse", rpe.rot_rmse_deg);
-  table += Printf("  %-22s %12.6f deg\n", "rotation mean", rpe.rot_mean_deg);
-  table += Printf("  %-22s %12zu\n", "pose pairs", rpe.pairs);
+  table += Printf("  %-22s %12.2f %%  (%s)\n", "coverage", 100.0 * ate.coverage,
+                  ate.coverage_of == CoverageOf::kSequenceFrames ? "of the sequence's frames"
+                                                                 : "of ground-truth poses");
+  if (!rpe) {
+    table += "Relative pose error: n/a (too short: fewer than 2 pose pairs)\n";
+    return table;
+  }
+  table += Printf("Relative pose error (delta %.3f s)\n", rpe->delta);
+  table += MetresRow("translation rmse", rpe->trans_rmse);
+  table += MetresRow("translation mean", rpe->trans_mean);
+  table += Printf("  %-22s %12.6f deg\n", "rotation rmse", rpe->rot_rmse_deg);
+  table += Printf("  %-22s %12.6f deg\n", "rotation mean", rpe->rot_mean_deg);
+  table += Printf("  %-22s %12zu\n", "pose pairs", rpe->pairs);
   return table;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "drvslam/eval/ate.h"
@@ -10,15 +11,18 @@
 
 namespace drvslam {
 
-// {"ate": {rmse, mean, median, std, min, max, matched, coverage, scale},
+// {"ate": {rmse, mean, median, std, min, max, matched, coverage, coverage_of, scale},
 //  "rpe": {trans_rmse, rot_rmse_deg, trans_mean, rot_mean_deg, pairs, delta}}; metres, degrees,
-// seconds, coverage as a fraction in [0, 1].
-nlohmann::json EvalReportJson(const AteResult& ate, const RpeResult& rpe);
+// seconds, coverage as a fraction in [0, 1] of what coverage_of names ("sequence_frames" or
+// "ground_truth_poses"). "rpe" is null when the run was too short to evaluate (no RpeResult).
+nlohmann::json EvalReportJson(const AteResult& ate, const std::optional<RpeResult>& rpe);
 
 // Writes EvalReportJson, indented. Throws Error naming the path when it cannot be written.
-void WriteEvalReportJson(const std::string& path, const AteResult& ate, const RpeResult& rpe);
+void WriteEvalReportJson(const std::string& path, const AteResult& ate,
+                         const std::optional<RpeResult>& rpe);
 
-// A table of ATE statistics (metres and centimetres), matched poses, coverage and RPE.
-std::string FormatEvalTable(const AteResult& ate, const RpeResult& rpe);
+// A table of ATE statistics (metres and centimetres), matched poses, coverage (saying of what)
+// and RPE (n/a without an RpeResult).
+std::string FormatEvalTable(const AteResult& ate, const std::optional<RpeResult>& rpe);
 
 }  // namespace drvslam

@@ -92,7 +92,11 @@ void RpeOptions::Check() const {
   }
 }
 
-RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptions& options) {
+namespace {
+
+// ComputeRpe up to the pair count check: `compared` may hold fewer than 2 pairs, the statistics
+// are then left at 0.
+RpeResult ComparePosePairs(const Trajectory& gt, const Trajectory& est, const RpeOptions& options) {
   options.Check();
   if (gt.empty()) throw Error("RPE: the ground-truth trajectory has no poses");
   if (est.empty()) throw Error("RPE: the estimated trajectory has no poses");
@@ -150,13 +154,7 @@ RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptio
     rot_errors.push_back(pair.rot_error);
     result.compared.push_back(pair);
   }
-  if (result.compared.size() < 2) {
-    std::ostringstream message;
-    message << "RPE: only " << result.compared.size() << " pose pair(s) " << options.delta
-            << " s apart have ground truth; at least 2 are needed (is the estimate shorter than "
-               "--rpe-delta?)";
-    throw Error(message.str());
-  }
+  if (result.compared.size() < 2) return result;
 
   constexpr double kDegreesPerRadian = 180.0 / M_PI;
   const ErrorStatistics trans = ComputeErrorStatistics(trans_errors);
@@ -166,6 +164,27 @@ RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptio
   result.trans_mean = trans.mean;
   result.rot_rmse_deg = rot.rmse * kDegreesPerRadian;
   result.rot_mean_deg = rot.mean * kDegreesPerRadian;
+  return result;
+}
+
+}  // namespace
+
+RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptions& options) {
+  RpeResult result = ComparePosePairs(gt, est, options);
+  if (result.compared.size() < 2) {
+    std::ostringstream message;
+    message << "RPE: only " << result.compared.size() << " pose pair(s) " << options.delta
+            << " s apart have ground truth; at least 2 are needed (is the estimate shorter than "
+               "--rpe-delta?)";
+    throw Error(message.str());
+  }
+  return result;
+}
+
+std::optional<RpeResult> ComputeRpeIfLongEnough(const Trajectory& gt, const Trajectory& est,
+                                                const RpeOptions& options) {
+  RpeResult result = ComparePosePairs(gt, est, options);
+  if (result.compared.size() < 2) return std::nullopt;
   return result;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "drvslam/io/trajectory_io.h"
@@ -48,5 +49,10 @@ struct RpeResult {
 // Throws Error when the options are bad, when fewer than 2 estimate stamps overlap the ground
 // truth ("too few overlapping stamps"), or when fewer than 2 pairs survive.
 RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptions& options);
+
+// ComputeRpe for a run that may be too short to evaluate: nullopt (RPE undefined, shown as n/a)
+// where ComputeRpe throws for fewer than 2 surviving pairs; the other errors are thrown alike.
+std::optional<RpeResult> ComputeRpeIfLongEnough(const Trajectory& gt, const Trajectory& est,
+                                                const RpeOptions& options);
 
 }  // namespace drvslam

@@ -289,8 +289,9 @@ cv::Mat RenderTrajectoryPlot(const Trajectory& gt, const Trajectory& est, const 
   cv::Mat image(kHeight, kWidth, CV_8UC3, kWhite);
   char title[256];
   std::snprintf(title, sizeof(title),
-                "ATE rmse %.4f m (%.2f cm), %zu matched poses, coverage %.1f%%%s", ate.errors.rmse,
-                100.0 * ate.errors.rmse, ate.matched, 100.0 * ate.coverage,
+                "ATE rmse %.4f m (%.2f cm), %zu matched poses, coverage %.1f%% of %s%s",
+                ate.errors.rmse, 100.0 * ate.errors.rmse, ate.matched, 100.0 * ate.coverage,
+                ate.coverage_of == CoverageOf::kSequenceFrames ? "frames" : "GT poses",
                 ate.with_scale ? (", scale " + std::to_string(ate.alignment.scale)).c_str() : "");
   const cv::Size title_size = TextSize(title, 0.8, 2);
   PutText(image, title, {(kWidth - title_size.width) / 2, 40}, 0.8, kBlack, 2);

@@ -144,6 +144,8 @@ double PlaceRecognitionResult::MeanScoreRatio() const {
 PlaceRecognitionResult EvaluatePlaceRecognition(const BowVocabulary& vocabulary,
                                                 const PlaceRecognitionSet& set) {
   const std::size_t queries = set.queries.size();
+  // The summaries of a result without queries would be made-up numbers.
+  if (queries == 0) throw Error("place recognition: no query to rank");
   if (set.true_matches.size() != queries || set.candidates.size() != queries) {
     throw Error("place recognition: " + std::to_string(queries) + " queries but " +
                 std::to_string(set.true_matches.size()) + " true-match lists and " +

@@ -102,6 +102,7 @@ struct PlaceRecognitionResult {
   double MeanScoreRatio() const;
 };
 
+// Throws Error when the set has no query (so a result always has one) or inconsistent lists.
 PlaceRecognitionResult EvaluatePlaceRecognition(const BowVocabulary& vocabulary,
                                                 const PlaceRecognitionSet& set);
 
