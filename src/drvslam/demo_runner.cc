@@ -255,8 +255,7 @@ std::string FormatDemoReport(const std::vector<DemoResult>& results) {
       "marked \"dynamic off\" track the same sequence without dynamic-object handling: plain\n"
       "ORB-SLAM2 behaviour, the baseline.\n\n"
       "| run | segmenter | tracked | keyframes | map points | ATE RMSE | RPE trans | RPE rot | "
-      "median "
-      "ms/frame | p95 ms/frame |\n"
+      "median ms/frame | p95 ms/frame |\n"
       "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const DemoResult& r : results) {
     text += "| " + r.run + " | " + r.segmenter + " | " + std::to_string(r.tracked) + "/" +

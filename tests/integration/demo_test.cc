@@ -118,6 +118,18 @@ TEST(DemoTest, MissingModelIsAnErrorNamingItBeforeAnythingRuns) {
   fs::remove_all(root);
 }
 
+TEST(DemoTest, MissingPhotographForTheCutOutsIsAnErrorNamingIt) {
+  CutoutSequenceOptions options;
+  options.photo_dir = "/no/such/folder";
+  try {
+    CutoutPhotoPaths(options);
+    FAIL() << "expected an Error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("/no/such/folder/basketball1.png"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(DemoTest, ModelAddsCutOutRowsSegmentedByTheNetwork) {
   const std::string model = testing::SharedModel("yolov8n-seg-320x256.onnx");
   DRVSLAM_SKIP_IF_MISSING(model, "shared model yolov8n-seg-320x256.onnx");
