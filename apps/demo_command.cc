@@ -1,4 +1,5 @@
-// drvslam demo: the embedded default (synthesize, run, evaluate, report), no download needed.
+// drvslam demo: the embedded default (synthesize, run, evaluate, report), no download needed;
+// --model adds rows segmented by the network.
 #include <cstdio>
 
 #include "command_registry.h"
@@ -18,6 +19,10 @@ const bool kRegistered = RegisterCommand("demo", [](CLI::App& root) {
   command->add_option("--seed", options->seed, "synthetic scene seed")->capture_default_str();
   command->add_option("--scenarios", options->scenarios, "synthetic scenarios to run")
       ->capture_default_str();
+  command->add_option("--model", options->model,
+                      "YOLOv8/YOLO11-seg ONNX model: also run the walking scenarios with actors "
+                      "cut out of the opencv-doc photographs, segmented by this network (e.g. "
+                      "../shared/models/yolov8n-seg-320x256.onnx)");
   command->callback([options] {
     const auto results =
         RunDemo(*options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });

@@ -1,7 +1,9 @@
 // RunDemo: the embedded default job a new user runs first, with no download. It synthesizes a
 // static and a dynamic version of the same camera path, runs SLAM on both (the dynamic one also
 // with dynamic handling off: the plain ORB-SLAM2 baseline it improves on), evaluates every run
-// against the exact ground truth and writes a report (report.md with plots).
+// against the exact ground truth and writes a report (report.md with plots). Those runs use the
+// sequences' ground-truth masks (an oracle); with a YOLO-seg model the walking scenarios are
+// also synthesized with actors cut out of real photographs and run with the network.
 #pragma once
 
 #include <functional>
@@ -19,11 +21,21 @@ struct DemoOptions {
   std::vector<std::string> scenarios = {"static_xyz", "walking_xyz"};
   // Also run each scenario that has moving actors with --dynamic off, for comparison.
   bool baseline = true;
+  // YOLO-seg ONNX model (--model); empty: no network-segmented rows. With it, every walking_*
+  // scenario is also synthesized with cut-out actors (OUT/<scenario>_cutouts) and run with
+  // --segmenter yolo (and, with baseline, --dynamic off).
+  std::string model;
 };
+
+// What DemoResult::segmenter says for runs on ground-truth masks and for baselines.
+inline constexpr char kOracleSegmenter[] = "ground-truth masks (oracle)";
+inline constexpr char kNoSegmenter[] = "none (dynamic off)";
 
 struct DemoResult {
   std::string scenario;
   std::string run;  // the run's name: the scenario, or "<scenario>, dynamic off"
+  // Where the masks came from: kOracleSegmenter, kNoSegmenter or "yolo (<model file>)".
+  std::string segmenter;
   std::size_t frames = 0;
   std::size_t tracked = 0;
   std::size_t keyframes = 0;
@@ -39,7 +51,8 @@ struct DemoResult {
   std::string plot_in_report;  // plot_path relative to the report's folder
 };
 
-// status(line) receives progress lines. Throws Error on failure.
+// status(line) receives progress lines. Throws Error on failure; a bad model or a missing
+// photograph for the cut-outs before anything runs, naming the file.
 std::vector<DemoResult> RunDemo(const DemoOptions& options,
                                 const std::function<void(const std::string&)>& status = nullptr);
 

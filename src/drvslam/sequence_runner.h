@@ -35,12 +35,10 @@ struct RunSummary {
   bool interrupted = false;
   std::string camera_trajectory_path;
   std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
-<<<<<<< HEAD
   // Where the masks came from (DynamicRunSetup::segmenter_label), and whether they were the
   // dataset's ground truth: an oracle, which every shown result must say.
   std::string segmenter;
   bool oracle_masks = false;
-=======
   // The frames the run was to process: the dataset's (associated colour-depth pairs), or
   // --max-frames when fewer; what ATE coverage counts against (AteOptions::sequence_frames).
   std::size_t sequence_frames = 0;
@@ -50,7 +48,6 @@ struct RunSummary {
   // (stats.tracking_fps counts the time inside TrackRGBD only).
   double wall_s = 0.0;
   double fps = 0.0;
->>>>>>> metrics
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
 };
@@ -62,13 +59,10 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-<<<<<<< HEAD
-// fps, frames_lost, segmenter.{label, oracle},
-=======
 // fps (wall-clock throughput of the whole run: frames / wall_s, see RunSummary), wall_s (the
 // run's wall time in seconds, frame loop and shutdown drain, writing the outputs excluded),
 // tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost,
->>>>>>> metrics
+// segmenter.{label, oracle},
 // relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,

@@ -1,12 +1,15 @@
 // The embedded default job (`drvslam demo`) on a short run: every scenario is synthesized,
 // tracked and evaluated, the walking one also with dynamic handling off, and the report links
-// every plot.
+// every plot and names each row's segmenter (ground-truth masks are labelled oracle). With a
+// model, the walking scenario is also run on cut-out actors segmented by the network.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 
+#include "../semantic/test_data.h"
 #include "drvslam/core/error.h"
+#include "drvslam/cutout_sequence.h"
 #include "drvslam/demo_runner.h"
 #include "synthesized_sequence.h"
 
@@ -27,6 +30,9 @@ TEST(DemoTest, RunsEachScenarioAndTheBaselineAndWritesTheReport) {
   EXPECT_EQ(results[1].run, "walking_xyz");
   EXPECT_EQ(results[2].run, "walking_xyz, dynamic off");
   EXPECT_EQ(results[2].scenario, "walking_xyz");
+  EXPECT_EQ(results[0].segmenter, kOracleSegmenter);
+  EXPECT_EQ(results[1].segmenter, kOracleSegmenter);
+  EXPECT_EQ(results[2].segmenter, kNoSegmenter);
   for (const DemoResult& result : results) {
     EXPECT_EQ(result.frames, 40u) << result.run;
     EXPECT_GE(result.tracked, 39u) << result.run;
@@ -40,7 +46,17 @@ TEST(DemoTest, RunsEachScenarioAndTheBaselineAndWritesTheReport) {
   EXPECT_LT(results[1].ate_rmse, 0.01);
 
   const std::string report = test::ReadFile(root / "report.md");
-  EXPECT_NE(report.find("| walking_xyz, dynamic off | "), std::string::npos) << report;
+  EXPECT_NE(report.find("| walking_xyz | ground-truth masks (oracle) | "), std::string::npos)
+      << report;
+  EXPECT_NE(report.find("| walking_xyz, dynamic off | none (dynamic off) | "), std::string::npos)
+      << report;
+  EXPECT_NE(report.find("the upper bound of the pipeline, not what a camera gets"),
+            std::string::npos)
+      << report;
+  // Without a model the report says how to get the network's rows.
+  EXPECT_NE(report.find("drvslam demo --model ../shared/models/yolov8n-seg-320x256.onnx"),
+            std::string::npos)
+      << report;
   EXPECT_NE(report.find("](walking_xyz/dynamic_off/trajectory.png)"), std::string::npos) << report;
   EXPECT_NE(report.find("](static_xyz/trajectory.png)"), std::string::npos) << report;
   fs::remove_all(root);
@@ -49,19 +65,24 @@ TEST(DemoTest, RunsEachScenarioAndTheBaselineAndWritesTheReport) {
 TEST(DemoTest, ReportSaysWhenATrajectoryIsTooShortToEvaluate) {
   DemoResult lost;
   lost.run = "walking_xyz, dynamic off";
+  lost.segmenter = kNoSegmenter;
   lost.frames = 40;
   lost.tracked = 2;
   lost.ate_rmse = -1.0;
   DemoResult good;
   good.run = "static_xyz";
+  good.segmenter = kOracleSegmenter;
   good.frames = 40;
   good.tracked = 40;
   good.ate_rmse = 0.0021;
   good.plot_in_report = "static_xyz/trajectory.png";
   const std::string report = FormatDemoReport({good, lost});
-  EXPECT_NE(report.find("| static_xyz | 40/40 |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| static_xyz | ground-truth masks (oracle) | 40/40 |"), std::string::npos)
+      << report;
   EXPECT_NE(report.find("| 0.21 cm |"), std::string::npos) << report;
-  EXPECT_NE(report.find("| walking_xyz, dynamic off | 2/40 |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| walking_xyz, dynamic off | none (dynamic off) | 2/40 |"),
+            std::string::npos)
+      << report;
   EXPECT_NE(report.find("| n/a |"), std::string::npos) << report;
   // Only runs with a plot get a section.
   EXPECT_NE(report.find("## static_xyz"), std::string::npos);
@@ -111,6 +132,81 @@ TEST(DemoTest, RunShorterThanTheRpeDeltaIsEvaluatedWithoutRpe) {
   ASSERT_NE(row, std::string::npos) << report;
   const std::string line = report.substr(row, report.find('\n', row) - row);
   EXPECT_NE(line.find(" cm | n/a | n/a |"), std::string::npos) << line;
+  fs::remove_all(root);
+}
+
+TEST(DemoTest, ReportLabelsOracleRowsOnlyWhenThereAreAnyAndNetworkRowsNeedNoHowTo) {
+  DemoResult network;
+  network.run = "walking_xyz, cut-out actors";
+  network.segmenter = "yolo (yolov8n-seg-320x256.onnx)";
+  network.frames = 40;
+  network.tracked = 40;
+  const std::string report = FormatDemoReport({network});
+  EXPECT_NE(
+      report.find("| walking_xyz, cut-out actors | yolo (yolov8n-seg-320x256.onnx) | 40/40 |"),
+      std::string::npos)
+      << report;
+  EXPECT_EQ(report.find("Oracle"), std::string::npos) << report;
+  EXPECT_EQ(report.find("demo --model"), std::string::npos) << report;
+}
+
+TEST(DemoTest, MissingModelIsAnErrorNamingItBeforeAnythingRuns) {
+  const fs::path root = test::FreshTempFolder("drvslam_demo_bad_model");
+  DemoOptions options;
+  options.out_dir = (root / "out").string();
+  options.model = (root / "no_such_model.onnx").string();
+  try {
+    RunDemo(options);
+    FAIL() << "expected an Error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find(options.model), std::string::npos) << error.what();
+  }
+  EXPECT_FALSE(fs::exists(options.out_dir));
+  fs::remove_all(root);
+}
+
+TEST(DemoTest, MissingPhotographForTheCutOutsIsAnErrorNamingIt) {
+  CutoutSequenceOptions options;
+  options.photo_dir = "/no/such/folder";
+  try {
+    CutoutPhotoPaths(options);
+    FAIL() << "expected an Error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("/no/such/folder/basketball1.png"), std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(DemoTest, ModelAddsCutOutRowsSegmentedByTheNetwork) {
+  const std::string model = testing::SharedModel("yolov8n-seg-320x256.onnx");
+  DRVSLAM_SKIP_IF_MISSING(model, "shared model yolov8n-seg-320x256.onnx");
+  for (const std::string& photo : DefaultCutoutPhotos()) {
+    DRVSLAM_SKIP_IF_MISSING(testing::OpenCvData(photo), "opencv-doc photograph " + photo);
+  }
+  const fs::path root = test::FreshTempFolder("drvslam_demo_model_test");
+  DemoOptions options;
+  options.out_dir = root.string();
+  options.frames = 40;
+  options.scenarios = {"walking_xyz"};
+  options.model = model;
+  const std::vector<DemoResult> results = RunDemo(options);
+
+  ASSERT_EQ(results.size(), 4u);
+  EXPECT_EQ(results[2].run, "walking_xyz, cut-out actors");
+  EXPECT_EQ(results[2].segmenter, "yolo (yolov8n-seg-320x256.onnx)");
+  EXPECT_EQ(results[3].run, "walking_xyz, cut-out actors, dynamic off");
+  EXPECT_EQ(results[3].segmenter, kNoSegmenter);
+  for (const DemoResult& result : results) {
+    EXPECT_GE(result.tracked, 39u) << result.run;
+    EXPECT_GT(result.ate_rmse, 0.0) << result.run;
+  }
+  EXPECT_GT(fs::file_size(root / "walking_xyz_cutouts" / "CameraTrajectory.txt"), 0u);
+  EXPECT_FALSE(fs::is_empty(root / "walking_xyz_cutouts" / "cutouts"));
+  const std::string report = test::ReadFile(root / "report.md");
+  EXPECT_NE(report.find("](walking_xyz_cutouts/trajectory.png)"), std::string::npos) << report;
+  EXPECT_NE(report.find("Rows segmented by `yolo` run the real pipeline"), std::string::npos)
+      << report;
+  EXPECT_EQ(report.find("demo --model"), std::string::npos) << report;
   fs::remove_all(root);
 }
 
