@@ -20,7 +20,9 @@ struct RunOptions {
   bool sequential = false;
   std::size_t max_frames = 0;  // 0 = all
   // Segmentation and dynamic-object handling (--segmenter, --model, --dynamic, --realtime,
-  // --debug-frames). --realtime also feeds frames at the dataset's rate (not in sequential mode).
+  // --debug-frames). --realtime also feeds frames at their timestamps from a feeder thread
+  // through a one-frame slot, skipping (and counting) frames tracking had no time for (not in
+  // sequential mode).
   DynamicRunChoice dynamic;
   // --dense on|off: the dense mapping thread (empty: DenseMap.enabled, default on); writes
   // dense_map.ply and dense_map.pcd.
@@ -33,6 +35,9 @@ struct RunSummary {
   SystemStats stats;
   std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
   bool interrupted = false;
+  // --realtime: frames that arrived while tracking was busy and were replaced by a newer one
+  // before tracking took them (not tracked, so absent from CameraTrajectory.txt).
+  std::size_t frames_skipped = 0;
   std::string camera_trajectory_path;
   std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
@@ -46,7 +51,7 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps, frames_lost, relocalization.{relocalizations,attempts,vocabulary_load_ms},
+// fps, frames_lost, frames_skipped, relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
 // motion_states} and segmentation.{SegmentationStatsJson}, and with dense mapping

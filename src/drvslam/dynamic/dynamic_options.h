@@ -96,6 +96,11 @@ struct DynamicOptions {
   // Map points.
   bool cull_moving_points = true;  // Dynamic.cullMovingPoints
 
+  // Dynamic.skipMovingExtraction: no ORB features are extracted on the objects the stage
+  // believes moving (their newest masks, dilated by maskDilation), so the extractor spends its
+  // feature budget on the background instead of on features removal would drop.
+  bool skip_moving_extraction = true;
+
   // Throws drvslam::Error naming the first bad Dynamic.* key and its value.
   void Check() const;
 };
