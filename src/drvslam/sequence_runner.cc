@@ -158,7 +158,10 @@ RunSummary RunSequence(const RunOptions& options,
     }
   } catch (const Error&) {
     // Keep what was tracked so far, then report the failure.
-    if (feeder) summary.frames_skipped = feeder->Skipped();
+    if (feeder) {
+      summary.frames_skipped = feeder->Skipped();
+      summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
+    }
     feeder.reset();
     WriteOutputs(system, out_dir, &summary);
     throw;
@@ -166,6 +169,7 @@ RunSummary RunSequence(const RunOptions& options,
   if (feeder) {
     feeder->Stop();
     summary.frames_skipped = feeder->Skipped();
+    summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
     feeder.reset();
   }
   WriteOutputs(system, out_dir, &summary);
@@ -183,6 +187,7 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["reference_fallbacks"] = s.reference_fallbacks;
   json["frames_lost"] = s.frames_lost;
   json["frames_skipped"] = summary.frames_skipped;
+  json["max_arrival_lag_ms"] = summary.max_arrival_lag_ms;
   json["relocalization"] = {{"relocalizations", s.relocalizations},
                             {"attempts", s.relocalization_attempts},
                             {"vocabulary_load_ms", s.vocabulary_load_ms}};

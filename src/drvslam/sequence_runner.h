@@ -38,6 +38,8 @@ struct RunSummary {
   // --realtime: frames that arrived while tracking was busy and were replaced by a newer one
   // before tracking took them (not tracked, so absent from CameraTrajectory.txt).
   std::size_t frames_skipped = 0;
+  // --realtime: the most a frame arrived after its timestamp because loading it fell behind.
+  double max_arrival_lag_ms = 0.0;
   std::string camera_trajectory_path;
   std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
@@ -51,7 +53,8 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps, frames_lost, frames_skipped, relocalization.{relocalizations,attempts,vocabulary_load_ms},
+// fps, frames_lost, frames_skipped, max_arrival_lag_ms,
+// relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
 // motion_states} and segmentation.{SegmentationStatsJson}, and with dense mapping

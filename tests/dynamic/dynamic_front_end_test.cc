@@ -268,7 +268,9 @@ TEST_F(DynamicFrontEndTest, NoFeaturesAreExtractedOnObjectsBelievedMoving) {
     for (int f = 0; f < 6; ++f) {
       stage.BeginFrame(0.033 * f, sequence.bgr[f]);
       const cv::Mat mask = stage.MovingSkipMask();
-      if (!skip) EXPECT_TRUE(mask.empty()) << "frame " << f;
+      if (!skip) {
+        EXPECT_TRUE(mask.empty()) << "frame " << f;
+      }
       if (!mask.empty()) {
         ++masked_frames;
         ASSERT_EQ(mask.size(), sequence.bgr[f].size());
@@ -290,14 +292,14 @@ TEST_F(DynamicFrontEndTest, NoFeaturesAreExtractedOnObjectsBelievedMoving) {
 }
 
 TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNever) {
-  // A 300 ms network. Frame 1 is expected to become a keyframe: it waits (up to 2 s here) for
+  // A 300 ms network. Frame 1 is expected to become a keyframe: it waits (up to 1 s here) for
   // its own masks, queued behind frame 0's. Frames 0 and 2 are not: they go on at once, without
   // their own masks.
   const Sequence sequence = Render(3, false, nullptr, [](int f) { return -0.05 * f; });
   DynamicFrontEndConfig config;
   config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 300);
   config.realtime = true;
-  config.segmentation.keyframe_wait_ms = 2000.0;
+  config.segmentation.keyframe_wait_ms = 1000.0;
   DynamicFrontEnd stage(config, 1000, map_, nullptr);
   const bool likely[] = {false, true, false};
   for (int f = 0; f < 3; ++f) {

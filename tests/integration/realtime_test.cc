@@ -1,5 +1,5 @@
 // --realtime end to end on a synthetic walking sequence, with a deliberately slow network (the
-// ground-truth segmenter behind a 300 ms sleep): frames arrive at their timestamps from the
+// ground-truth segmenter behind a 1 s sleep): frames arrive at their timestamps from the
 // RealtimeFeeder, tracking never waits for the network, frames it has no time for are skipped
 // and counted, and the run ends about when the sequence does.
 #include <gtest/gtest.h>
@@ -27,7 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::size_t kFrames = 90;  // 3 s at 30 Hz
-constexpr int kNetworkMs = 300;
+constexpr int kNetworkMs = 1000;
 
 class SlowSegmenter : public Segmenter {
  public:
@@ -67,6 +67,8 @@ TEST(RealtimeIntegrationTest, TrackingNeverWaitsForASlowNetworkAndSkipsWhatItCan
   DynamicFrontEndConfig dynamic;
   dynamic.segmenter = std::make_shared<SlowSegmenter>(sequence);
   dynamic.realtime = true;
+  // No carrying: the masks' wait then measures waiting alone, not the flow computed meanwhile.
+  dynamic.segmentation.propagation = MaskPropagation::kNone;
   options.dynamic = dynamic;
   System system(settings, LoadTrackerOptions(file), options);
 
@@ -93,16 +95,25 @@ TEST(RealtimeIntegrationTest, TrackingNeverWaitsForASlowNetworkAndSkipsWhatItCan
   for (const StampedPose& pose : system.CameraTrajectory()) {
     EXPECT_EQ(tracked_stamps.count(pose.timestamp), 1u) << pose.timestamp;
   }
-  // Tracking never waited for the network: per-frame time stays far below its 300 ms (generous
-  // bounds; the machine may be loaded), and the network saw only a few frames, the newest each
-  // time it became free.
+  // Tracking never waited for the network (1 s per frame): the wait for masks is nothing but
+  // the bounded keyframe waits (Segmentation.keyframeWaitMs, 15 ms), and whole frames stay far
+  // below the network's latency. Generous bounds: the machine may be loaded.
+  const TimingSummary wait = stats.stages.at("segmentation_wait");
+  EXPECT_LT(wait.median_ms, 5.0);
+  EXPECT_LT(wait.max_ms, kNetworkMs / 4.0);
   EXPECT_LT(Percentile(frame_ms, 0.5), kNetworkMs / 2.0);
-  EXPECT_LT(Percentile(frame_ms, 1.0), kNetworkMs * 0.9);
+  // The network takes the newest frame whenever it is free: the ones that waited meanwhile
+  // were dropped.
   ASSERT_TRUE(stats.dynamic && stats.dynamic->segmentation);
-  EXPECT_LE(stats.dynamic->segmentation->segmented, kFrames / 5);
-  // The run ends about when the sequence does: at most one frame's tracking after the last
-  // frame arrived (plus a generous margin for a loaded machine).
-  EXPECT_LT(run_s, duration + 1.0) << "sequence " << duration << " s";
+  EXPECT_GT(stats.dynamic->segmentation->dropped, 0u);
+  EXPECT_LT(stats.dynamic->segmentation->segmented, frame_ms.size() / 2);
+  // The run ends about when the sequence does: after the last frame arrived (late only when
+  // loading frames fell behind), only the frame being tracked is finished.
+  const double lag_s = feeder.MaxArrivalLagMs() / 1000.0;
+  const double longest_frame_s = Percentile(frame_ms, 1.0) / 1000.0;
+  EXPECT_LT(run_s, duration + lag_s + longest_frame_s + 0.5)
+      << "sequence " << duration << " s, arrival lag " << lag_s << " s, longest frame "
+      << longest_frame_s << " s";
   EXPECT_GT(stats.tracked, stats.frames / 2);
   fs::remove_all(root);
 }

@@ -1,5 +1,6 @@
 #include "drvslam/io/realtime_feeder.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "drvslam/core/error.h"
@@ -44,10 +45,18 @@ void RealtimeFeeder::Play(std::size_t count, double rate) {
                       std::chrono::duration<double>((frame->timestamp - first) / rate));
     std::unique_lock<std::mutex> lock(mutex_);
     if (stop_requested_.wait_until(lock, due, [&] { return stopping_; })) break;
+    const double lag_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count();
+    max_lag_ms_ = std::max(max_lag_ms_, lag_ms);
     lock.unlock();
     slot_.Put(std::move(*frame));
   }
   slot_.Close();
+}
+
+double RealtimeFeeder::MaxArrivalLagMs() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return max_lag_ms_;
 }
 
 std::optional<RgbdFrame> RealtimeFeeder::Next() {

@@ -41,16 +41,20 @@ class RealtimeFeeder {
   std::size_t Skipped() const { return slot_.Skipped(); }
   // Frames that arrived so far (taken, skipped or waiting).
   std::size_t Arrived() const { return slot_.Accepted(); }
+  // The most a frame arrived after its timestamp (loading it took longer than the frame period:
+  // the feeder, not tracking, fell behind the sensor), in ms.
+  double MaxArrivalLagMs() const;
 
  private:
   void Play(std::size_t count, double rate);
 
   const TumDataset& dataset_;
   LatestFrameSlot<RgbdFrame> slot_;
-  std::mutex mutex_;  // guards stopping_ and error_
+  mutable std::mutex mutex_;  // guards stopping_, error_ and max_lag_ms_
   std::condition_variable stop_requested_;
   bool stopping_ = false;
   std::exception_ptr error_;
+  double max_lag_ms_ = 0.0;
   std::thread thread_;
 };
 
