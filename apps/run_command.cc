@@ -19,8 +19,10 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   std::printf("settings:    %s\n", summary.settings_source.c_str());
   std::printf("dynamic:     %s\n", summary.dynamic_setup.c_str());
   std::printf("frames:      %zu%s\n", s.frames, summary.interrupted ? " (interrupted)" : "");
-  std::printf("skipped:     %zu frames (arrived while tracking was busy; not tracked)\n",
-              summary.frames_skipped);
+  std::printf(
+      "skipped:     %zu frames (arrived while tracking was busy; not tracked), %zu of them "
+      "not even loaded\n",
+      summary.frames_skipped, summary.frames_skipped_loading);
   std::printf("tracked:     %zu (%.1f%%)\n", s.tracked, ratio);
   std::printf("keyframes:   %zu\n", s.keyframes);
   std::printf("lost:        %zu frames after initialization, %d relocalizations (%d attempts)\n",

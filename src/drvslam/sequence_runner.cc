@@ -159,7 +159,9 @@ RunSummary RunSequence(const RunOptions& options,
   } catch (const Error&) {
     // Keep what was tracked so far, then report the failure.
     if (feeder) {
+      feeder->Stop();
       summary.frames_skipped = feeder->Skipped();
+      summary.frames_skipped_loading = feeder->SkippedWhileLoading();
       summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
     }
     feeder.reset();
@@ -169,6 +171,7 @@ RunSummary RunSequence(const RunOptions& options,
   if (feeder) {
     feeder->Stop();
     summary.frames_skipped = feeder->Skipped();
+    summary.frames_skipped_loading = feeder->SkippedWhileLoading();
     summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
     feeder.reset();
   }
@@ -187,6 +190,7 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["reference_fallbacks"] = s.reference_fallbacks;
   json["frames_lost"] = s.frames_lost;
   json["frames_skipped"] = summary.frames_skipped;
+  json["frames_skipped_loading"] = summary.frames_skipped_loading;
   json["max_arrival_lag_ms"] = summary.max_arrival_lag_ms;
   json["relocalization"] = {{"relocalizations", s.relocalizations},
                             {"attempts", s.relocalization_attempts},

@@ -36,8 +36,10 @@ struct RunSummary {
   std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
   bool interrupted = false;
   // --realtime: frames that arrived while tracking was busy and were replaced by a newer one
-  // before tracking took them (not tracked, so absent from CameraTrajectory.txt).
+  // before tracking took them (not tracked, so absent from CameraTrajectory.txt); of them,
+  // frames_skipped_loading were not even loaded (loading had fallen behind).
   std::size_t frames_skipped = 0;
+  std::size_t frames_skipped_loading = 0;
   // --realtime: the most a frame arrived after its timestamp because loading it fell behind.
   double max_arrival_lag_ms = 0.0;
   std::string camera_trajectory_path;
@@ -53,7 +55,7 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::atomic<bool>* stop = nullptr);
 
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps, frames_lost, frames_skipped, max_arrival_lag_ms,
+// fps, frames_lost, frames_skipped, frames_skipped_loading, max_arrival_lag_ms,
 // relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,

@@ -292,28 +292,31 @@ TEST_F(DynamicFrontEndTest, NoFeaturesAreExtractedOnObjectsBelievedMoving) {
 }
 
 TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNever) {
-  // A 300 ms network. Frame 1 is expected to become a keyframe: it waits (up to 1 s here) for
-  // its own masks, queued behind frame 0's. Frames 0 and 2 are not: they go on at once, without
-  // their own masks.
-  const Sequence sequence = Render(3, false, nullptr, [](int f) { return -0.05 * f; });
+  // A 300 ms network. Frame 1 is expected to become a keyframe, but frame 0 is ahead of it on
+  // the network: a whole forward pass away, it does not wait. Frame 2 is expected too and the
+  // network is idle when it comes: it waits (up to 1 s here) and gets its own masks. Frame 3 is
+  // not expected: it never waits.
+  const Sequence sequence = Render(4, false, nullptr, [](int f) { return -0.05 * f; });
   DynamicFrontEndConfig config;
   config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 300);
   config.realtime = true;
   config.segmentation.keyframe_wait_ms = 1000.0;
   DynamicFrontEnd stage(config, 1000, map_, nullptr);
-  const bool likely[] = {false, true, false};
-  for (int f = 0; f < 3; ++f) {
+  const bool likely[] = {false, true, true, false};
+  const bool own[] = {false, false, true, false};
+  for (int f = 0; f < 4; ++f) {
+    // Before frame 2 the network finishes frames 0 and 1 and goes idle.
+    if (f == 2) std::this_thread::sleep_for(std::chrono::milliseconds(900));
     stage.BeginFrame(0.033 * f, sequence.bgr[f], likely[f]);
     stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
-    EXPECT_EQ(stage.LastReport().own_masks, likely[f]) << "frame " << f;
+    EXPECT_EQ(stage.LastReport().own_masks, own[f]) << "frame " << f;
     stage.NoteKeyFrame(likely[f]);
   }
-  // Frame 1's own masks (one person); frame 2 had frame 1's, carried.
   const DynamicStats stats = stage.Stats();
   EXPECT_EQ(stats.keyframe_waits, 1u);
   EXPECT_EQ(stats.keyframe_waits_fresh, 1u);
-  EXPECT_EQ(stats.keyframes, 1u);
-  EXPECT_EQ(stats.keyframes_expected, 1u);
+  EXPECT_EQ(stats.keyframes, 2u);
+  EXPECT_EQ(stats.keyframes_expected, 2u);
   EXPECT_EQ(stats.keyframes_own_masks, 1u);
 }
 

@@ -138,9 +138,10 @@ Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
     if (!config_.realtime) {
       report_.own_masks = true;
     } else {
-      // Keyframe priority: a likely keyframe waits a bounded time for its own masks.
+      // Keyframe priority: a likely keyframe waits a bounded time for its own masks, when the
+      // network is on its image or about to be (else another forward pass is ahead: no use).
       const double wait_ms = config_.segmentation.keyframe_wait_ms;
-      if (report_.keyframe_likely && wait_ms > 0.0) {
+      if (report_.keyframe_likely && wait_ms > 0.0 && async_->TakenOrNext(next_index_)) {
         ++stats_.keyframe_waits;
         if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
       }

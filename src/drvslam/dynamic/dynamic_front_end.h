@@ -12,18 +12,17 @@
 //     the object starts moving.
 // Segmentation scheduling with --realtime: the network always starts on the newest frame (a
 // one-frame slot in AsyncSegmenter), and keyframes get priority for fresh masks: a frame that
-// tracking expects to become a keyframe (Tracker::KeyFrameLikely, told to BeginFrame) waits at
-// most Segmentation.keyframeWaitMs for its own masks, other frames never wait. Chosen over
-// segmenting keyframes after their creation because a keyframe's features become map points at
-// creation: masks that arrive later could only remove them again, while a short wait keeps
-// moving features out of the map in the first place, at a bounded cost to the frame.
-// Stage timings recorded (ms per frame): segmentation (the network's time for the frame),
-// segmentation_wait (how long tracking waited for masks, keyframe waits included),
-// motion_consistency (flow, scene model,
-// reprojection test), removal (IDs, motion states, culling, removal, filtering).
-// Works without a segmenter too (geometry only: moving points grouped into regions). Used by
-// the tracking thread only; in sequential mode segmentation runs inline and the output is
-// bit-identical from run to run.
+// tracking expects to become a keyframe (Tracker::KeyFrameLikely, told to BeginFrame) and whose
+// image the network is on (or about to be: no other frame ahead of it) waits at most
+// Segmentation.keyframeWaitMs for its own masks; other frames never wait. Chosen over segmenting
+// keyframes after their creation because a keyframe's features become map points at creation: masks
+// that arrive later could only remove them again, while a short wait keeps moving features out of
+// the map in the first place, at a bounded cost to the frame. Stage timings recorded (ms per
+// frame): segmentation (the network's time for the frame), segmentation_wait (how long tracking
+// waited for masks, keyframe waits included), motion_consistency (flow, scene model, reprojection
+// test), removal (IDs, motion states, culling, removal, filtering). Works without a segmenter too
+// (geometry only: moving points grouped into regions). Used by the tracking thread only; in
+// sequential mode segmentation runs inline and the output is bit-identical from run to run.
 #pragma once
 
 #include <fstream>

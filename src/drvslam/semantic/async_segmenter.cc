@@ -173,6 +173,21 @@ std::shared_ptr<const SegmentedFrame> AsyncSegmenter::WaitFor(std::size_t frame_
   return slot->second.result;
 }
 
+bool AsyncSegmenter::TakenOrNext(std::size_t frame_index) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto slot = slots_.find(frame_index);
+  if (slot == slots_.end()) return false;
+  if (slot->second.state == State::kRunning || slot->second.state == State::kDone) return true;
+  if (slot->second.state != State::kQueued) return false;
+  for (const auto& [index, other] : slots_) {
+    if (index != frame_index && (other.state == State::kRunning ||
+                                 (other.state == State::kQueued && index < frame_index))) {
+      return false;
+    }
+  }
+  return true;
+}
+
 std::shared_ptr<const SegmentedFrame> AsyncSegmenter::TryGet(std::size_t frame_index) const {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto slot = slots_.find(frame_index);

@@ -67,6 +67,9 @@ class AsyncSegmenter {
   // Waits at most `timeout_ms` for frame `frame_index`; its result when it finished in time,
   // else nullptr (also when it failed, was dropped or is unknown: never throws).
   std::shared_ptr<const SegmentedFrame> WaitFor(std::size_t frame_index, double timeout_ms);
+  // Whether no other frame is ahead of that one: it is being segmented or finished, or it waits
+  // while no frame is being segmented (the worker is about to take it); never blocks.
+  bool TakenOrNext(std::size_t frame_index) const;
   // That frame's result when it is finished, else nullptr; never blocks.
   std::shared_ptr<const SegmentedFrame> TryGet(std::size_t frame_index) const;
   // The finished frame with the highest index, or nullptr; never blocks.
