@@ -91,8 +91,8 @@ void System::Shutdown() {
 TrackingResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
   const Stopwatch total;
   // Dynamic objects: segmentation starts before extraction (on its own thread) and may raise
-  // the feature target; no features are extracted on objects believed moving; the frame's
-  // masks then take the moving features out before tracking.
+  // the feature target; with Dynamic.skipMovingExtraction no features are extracted on objects
+  // believed moving; the frame's masks then take the moving features out before tracking.
   const int feature_target =
       dynamic_ ? dynamic_->BeginFrame(timestamp, bgr, tracker_.KeyFrameLikely()) : 0;
   const cv::Mat skip_mask = dynamic_ ? dynamic_->MovingSkipMask() : cv::Mat();
