@@ -97,8 +97,10 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
                    "on|off: the loop closing thread (default: LoopClosing.enabled, on)")
       ->check(CLI::IsMember({"on", "off"}));
   command->add_flag("--realtime", dynamic.realtime,
-                    "feed frames at the dataset's rate and track with the newest masks, carried "
-                    "to the frame by optical flow, instead of waiting (ignored with --sequential)");
+                    "play the dataset as a camera: frames arrive at their timestamps, a frame "
+                    "that arrives while tracking is busy replaces the waiting one (counted as "
+                    "skipped), and tracking uses the newest masks, carried to the frame, instead "
+                    "of waiting (ignored with --sequential)");
   command->add_option("--debug-frames", dynamic.debug_dir,
                       "write one picture per frame there: kept features green, removed red, "
                       "moving masks red, static masks green");
