@@ -36,6 +36,10 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
         "figures\n");
   }
   std::printf("frames:      %zu%s\n", s.frames, summary.interrupted ? " (interrupted)" : "");
+  std::printf(
+      "skipped:     %zu frames (arrived while tracking was busy; not tracked), %zu of them "
+      "not even loaded\n",
+      summary.frames_skipped, summary.frames_skipped_loading);
   std::printf("tracked:     %zu (%.1f%%)\n", s.tracked, ratio);
   std::printf("keyframes:   %zu\n", s.keyframes);
   std::printf("lost:        %zu frames after initialization, %d relocalizations (%d attempts)\n",
@@ -113,8 +117,10 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
                    "on|off: the loop closing thread (default: LoopClosing.enabled, on)")
       ->check(CLI::IsMember({"on", "off"}));
   command->add_flag("--realtime", dynamic.realtime,
-                    "feed frames at the dataset's rate and track with the newest masks, carried "
-                    "to the frame by optical flow, instead of waiting (ignored with --sequential)");
+                    "play the dataset as a camera: frames arrive at their timestamps, a frame "
+                    "that arrives while tracking is busy replaces the waiting one (counted as "
+                    "skipped), and tracking uses the newest masks, carried to the frame, instead "
+                    "of waiting (ignored with --sequential)");
   command->add_option("--debug-frames", dynamic.debug_dir,
                       "write one picture per frame there: kept features green, removed red, "
                       "moving masks red, static masks green");

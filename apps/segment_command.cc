@@ -10,6 +10,7 @@
 
 #include "command_registry.h"
 #include "drvslam/core/settings_file.h"
+#include "drvslam/core/thread_budget.h"
 #include "drvslam/semantic/segment_job.h"
 #include "drvslam/semantic/segmentation_options.h"
 #include "drvslam/semantic/yolo_segmenter.h"
@@ -51,6 +52,8 @@ void RunSegment(SegmentArguments& args) {
   if (args.score >= 0.0) options.score_threshold = args.score;
   if (args.threads > 0) options.dnn_threads = args.threads;
   options.Check();
+  // One thread segments here, so OpenCV keeps every core unless --threads says otherwise.
+  drvslam::ApplyOpenCvThreadBudget(drvslam::ChooseOpenCvThreads(options.dnn_threads, true));
 
   drvslam::YoloSegmenter segmenter(options);
   std::cout << "model: " << args.model << " (input " << segmenter.InputSize().width << "x"

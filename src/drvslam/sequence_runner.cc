@@ -13,6 +13,7 @@
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_stats_json.h"
 #include "drvslam/dynamic/dynamic_stats_json.h"
+#include "drvslam/io/realtime_feeder.h"
 #include "drvslam/io/tum_dataset.h"
 
 namespace drvslam {
@@ -128,35 +129,59 @@ RunSummary RunSequence(const RunOptions& options,
   summary.dynamic_setup = dynamic.description;
   summary.segmenter = dynamic.segmenter_label;
   summary.oracle_masks = dynamic.oracle;
-  // --realtime: frames arrive at the dataset's rate, as from a sensor (never when sequential).
+  // --realtime: frames arrive at their timestamps from a feeder thread, as from a sensor, and
+  // a frame that arrives while tracking is busy replaces the one waiting (never when
+  // sequential).
   const bool paced = options.dynamic.realtime && !options.sequential;
+
   std::size_t total = dataset.Size();
   if (options.max_frames > 0 && options.max_frames < total) total = options.max_frames;
   summary.sequence_frames = total;
+  const auto track = [&](const RgbdFrame& frame) {
+    system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
+    if (motion_truth && system.Dynamic()) {
+      motion_truth->Add(system.Dynamic()->LastReport(), frame.bgr.size());
+      summary.motion_states = motion_truth->Scores();
+    }
+    if (progress) progress(frame.index + 1, total);
+  };
+  std::optional<RealtimeFeeder> feeder;
+  // Stops the feeder and files what it skipped (also when the run failed).
+  const auto finish_feeder = [&] {
+    if (!feeder) return;
+    feeder->Stop();
+    summary.frames_skipped = feeder->Skipped();
+    summary.frames_skipped_loading = feeder->SkippedWhileLoading();
+    summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
+    feeder.reset();
+  };
   const Clock::time_point started = Clock::now();
   try {
-    for (std::size_t i = 0; i < total; ++i) {
-      if (stop && stop->load()) {
-        summary.interrupted = true;
-        break;
+    if (paced) {
+      feeder.emplace(dataset, total);
+      while (std::optional<RgbdFrame> frame = feeder->Next()) {
+        if (stop && stop->load()) {
+          summary.interrupted = true;
+          break;
+        }
+        track(*frame);
       }
-      const RgbdFrame frame = dataset.Read(i);
-      if (paced) {
-        std::this_thread::sleep_until(
-            started + std::chrono::duration<double>(frame.timestamp - dataset.Timestamp(0)));
+    } else {
+      for (std::size_t i = 0; i < total; ++i) {
+        if (stop && stop->load()) {
+          summary.interrupted = true;
+          break;
+        }
+        track(dataset.Read(i));
       }
-      system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
-      if (motion_truth && system.Dynamic()) {
-        motion_truth->Add(system.Dynamic()->LastReport(), frame.bgr.size());
-        summary.motion_states = motion_truth->Scores();
-      }
-      if (progress) progress(i + 1, total);
     }
   } catch (const Error&) {
     // Keep what was tracked so far, then report the failure.
+    finish_feeder();
     WriteOutputs(system, out_dir, started, &summary);
     throw;
   }
+  finish_feeder();
   WriteOutputs(system, out_dir, started, &summary);
   return summary;
 }
@@ -171,6 +196,9 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["map_points"] = s.map_points;
   json["reference_fallbacks"] = s.reference_fallbacks;
   json["frames_lost"] = s.frames_lost;
+  json["frames_skipped"] = summary.frames_skipped;
+  json["frames_skipped_loading"] = summary.frames_skipped_loading;
+  json["max_arrival_lag_ms"] = summary.max_arrival_lag_ms;
   json["relocalization"] = {{"relocalizations", s.relocalizations},
                             {"attempts", s.relocalization_attempts},
                             {"vocabulary_load_ms", s.vocabulary_load_ms}};

@@ -20,7 +20,9 @@ struct RunOptions {
   bool sequential = false;
   std::size_t max_frames = 0;  // 0 = all
   // Segmentation and dynamic-object handling (--segmenter, --model, --dynamic, --realtime,
-  // --debug-frames). --realtime also feeds frames at the dataset's rate (not in sequential mode).
+  // --debug-frames). --realtime also feeds frames at their timestamps from a feeder thread
+  // through a one-frame slot, skipping (and counting) frames tracking had no time for (not in
+  // sequential mode).
   DynamicRunChoice dynamic;
   // --dense on|off: the dense mapping thread (empty: DenseMap.enabled, default on); writes
   // dense_map.ply and dense_map.pcd.
@@ -33,6 +35,13 @@ struct RunSummary {
   SystemStats stats;
   std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
   bool interrupted = false;
+  // --realtime: frames that arrived while tracking was busy and were replaced by a newer one
+  // before tracking took them (not tracked, so absent from CameraTrajectory.txt); of them,
+  // frames_skipped_loading were not even loaded (loading had fallen behind).
+  std::size_t frames_skipped = 0;
+  std::size_t frames_skipped_loading = 0;
+  // --realtime: the most a frame arrived after its timestamp because loading it fell behind.
+  double max_arrival_lag_ms = 0.0;
   std::string camera_trajectory_path;
   std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
   // Where the masks came from (DynamicRunSetup::segmenter_label), and whether they were the
@@ -62,7 +71,7 @@ RunSummary RunSequence(const RunOptions& options,
 // fps (wall-clock throughput of the whole run: frames / wall_s, see RunSummary), wall_s (the
 // run's wall time in seconds, frame loop and shutdown drain, writing the outputs excluded),
 // tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost,
-// segmenter.{label, oracle},
+// frames_skipped, frames_skipped_loading, max_arrival_lag_ms, segmenter.{label, oracle},
 // relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,

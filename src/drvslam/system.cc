@@ -4,6 +4,7 @@
 
 #include <mutex>
 
+#include "drvslam/core/thread_budget.h"
 #include "drvslam/loop/default_vocabulary.h"
 #include "drvslam/loop/vocabulary_io.h"
 
@@ -34,6 +35,9 @@ System::System(const Settings& settings, const TrackerOptions& tracker_options,
       frame_factory_(settings),
       tracker_(map_, tracker_options, settings.camera.fps),
       local_mapper_(map_, options.mapping, options.sequential, &timings_) {
+  // The one place the process's OpenCV thread pool is set (core/thread_budget.h).
+  ApplyOpenCvThreadBudget(ChooseOpenCvThreads(
+      options.dynamic ? options.dynamic->segmentation.dnn_threads : 0, options.sequential));
   tracker_.SetMappingStatus(&local_mapper_);
   if (options.relocalization.enabled) {
     options.relocalization.Check();
@@ -87,10 +91,13 @@ void System::Shutdown() {
 TrackingResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
   const Stopwatch total;
   // Dynamic objects: segmentation starts before extraction (on its own thread) and may raise
-  // the feature target; the frame's masks then take the moving features out before tracking.
-  const int feature_target = dynamic_ ? dynamic_->BeginFrame(timestamp, bgr) : 0;
+  // the feature target; with Dynamic.skipMovingExtraction no features are extracted on objects
+  // believed moving; the frame's masks then take the moving features out before tracking.
+  const int feature_target =
+      dynamic_ ? dynamic_->BeginFrame(timestamp, bgr, tracker_.KeyFrameLikely()) : 0;
+  const cv::Mat skip_mask = dynamic_ ? dynamic_->MovingSkipMask() : cv::Mat();
   const Stopwatch extraction;
-  Frame frame = frame_factory_.Build(timestamp, bgr, depth, cv::Mat(), feature_target);
+  Frame frame = frame_factory_.Build(timestamp, bgr, depth, skip_mask, feature_target);
   timings_.Record("extraction", extraction.ElapsedMs());
   if (dynamic_) frame = dynamic_->Filter(std::move(frame), bgr, depth);
   const Stopwatch tracking;
@@ -107,6 +114,7 @@ TrackingResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, doubl
     }
   }
   timings_.Record("tracking", tracking.ElapsedMs());
+  if (dynamic_) dynamic_->NoteKeyFrame(result.new_keyframe != nullptr);
   // Sequential: the keyframe is mapped here, before the next frame.
   if (result.new_keyframe) local_mapper_.InsertKeyFrame(result.new_keyframe);
   // Filed for place recognition once mapping has it (its bag of words came with it).

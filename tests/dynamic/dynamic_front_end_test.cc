@@ -6,9 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
+#include <thread>
 
 #include "drvslam/core/coco_classes.h"
 #include "drvslam/core/error.h"
@@ -27,10 +29,13 @@ using test::Plane;
 // Returns prepared segmentations by frame index.
 class ScriptedSegmenter : public Segmenter {
  public:
-  explicit ScriptedSegmenter(std::vector<Segmentation> frames) : frames_(std::move(frames)) {
+  // sleep_ms: the network's latency per frame.
+  explicit ScriptedSegmenter(std::vector<Segmentation> frames, int sleep_ms = 0)
+      : frames_(std::move(frames)), sleep_ms_(sleep_ms) {
     for (std::string_view name : CocoClassNames()) names_.emplace_back(name);
   }
   Segmentation Segment(const cv::Mat&, double timestamp, std::size_t index) override {
+    if (sleep_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(sleep_ms_));
     Segmentation s = frames_.at(index);
     s.timestamp = timestamp;
     s.frame_index = index;
@@ -41,6 +46,7 @@ class ScriptedSegmenter : public Segmenter {
 
  private:
   std::vector<Segmentation> frames_;
+  int sleep_ms_;
   std::vector<std::string> names_;
 };
 
@@ -87,10 +93,11 @@ class DynamicFrontEndTest : public ::testing::Test {
     geometry_ = std::make_shared<SensorGeometry>(camera, ScalePyramid(8, 1.2), 3.0);
   }
 
-  Frame Extract(const Sequence& sequence, int f, int target = 0) {
+  Frame Extract(const Sequence& sequence, int f, int target = 0,
+                const cv::Mat& skip_mask = cv::Mat()) {
     std::vector<cv::KeyPoint> keypoints;
     cv::Mat descriptors;
-    extractor_.Extract(sequence.images[f].gray, cv::Mat(), target, &keypoints, &descriptors);
+    extractor_.Extract(sequence.images[f].gray, skip_mask, target, &keypoints, &descriptors);
     return Frame(f, 0.033 * f,
                  std::make_shared<const FrameFeatures>(geometry_, std::move(keypoints), descriptors,
                                                        sequence.images[f].depth));
@@ -245,6 +252,91 @@ TEST_F(DynamicFrontEndTest, WithoutASegmenterMovingThingsAreFoundByGeometry) {
   }
   EXPECT_EQ(stage.Stats().segmenter, "none");
   EXPECT_FALSE(stage.Stats().segmentation.has_value());
+}
+
+TEST_F(DynamicFrontEndTest, NoFeaturesAreExtractedOnObjectsBelievedMoving) {
+  // A walking person at 3 m: once judged moving, the skip mask covers it where it is now (its
+  // own masks, sequential) and the extractor finds nothing there; with the option off, no mask.
+  const Sequence sequence = Render(6, false, nullptr, [](int f) { return -0.05 * f; });
+  for (const bool skip : {true, false}) {
+    DynamicFrontEndConfig config;
+    config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks);
+    config.sequential = true;
+    config.options.skip_moving_extraction = skip;
+    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    int masked_frames = 0;
+    for (int f = 0; f < 6; ++f) {
+      stage.BeginFrame(0.033 * f, sequence.bgr[f]);
+      const cv::Mat mask = stage.MovingSkipMask();
+      if (!skip) {
+        EXPECT_TRUE(mask.empty()) << "frame " << f;
+      }
+      if (!mask.empty()) {
+        ++masked_frames;
+        ASSERT_EQ(mask.size(), sequence.bgr[f].size());
+        const cv::Mat person = sequence.images[f].labels == 3;
+        cv::Mat covered;
+        cv::bitwise_and(mask, person, covered);
+        EXPECT_GE(cv::countNonZero(covered), cv::countNonZero(person) * 95 / 100) << "frame " << f;
+        EXPECT_GT(CountOn(Extract(sequence, f), sequence.images[f].labels, 3), 20);
+        EXPECT_EQ(CountOn(Extract(sequence, f, 0, mask), sequence.images[f].labels, 3), 0);
+        EXPECT_GT(stage.LastReport().skip_share, 0.0);
+      }
+      stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+    }
+    if (skip) {
+      EXPECT_GE(masked_frames, 3);
+      EXPECT_EQ(stage.Stats().frames_skip_mask, static_cast<std::size_t>(masked_frames));
+    }
+  }
+}
+
+TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNever) {
+  // A 300 ms network. Frame 1 is expected to become a keyframe, but frame 0 is ahead of it on
+  // the network: a whole forward pass away, it does not wait. Frame 2 is expected too and the
+  // network is idle when it comes: it waits (up to 1 s here) and gets its own masks. Frame 3 is
+  // not expected: it never waits.
+  const Sequence sequence = Render(4, false, nullptr, [](int f) { return -0.05 * f; });
+  DynamicFrontEndConfig config;
+  config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 300);
+  config.realtime = true;
+  config.segmentation.keyframe_wait_ms = 1000.0;
+  DynamicFrontEnd stage(config, 1000, map_, nullptr);
+  const bool likely[] = {false, true, true, false};
+  const bool own[] = {false, false, true, false};
+  for (int f = 0; f < 4; ++f) {
+    // Before frame 2 the network finishes frames 0 and 1 and goes idle.
+    if (f == 2) std::this_thread::sleep_for(std::chrono::milliseconds(900));
+    stage.BeginFrame(0.033 * f, sequence.bgr[f], likely[f]);
+    stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+    EXPECT_EQ(stage.LastReport().own_masks, own[f]) << "frame " << f;
+    stage.NoteKeyFrame(likely[f]);
+  }
+  const DynamicStats stats = stage.Stats();
+  EXPECT_EQ(stats.keyframe_waits, 1u);
+  EXPECT_EQ(stats.keyframe_waits_fresh, 1u);
+  EXPECT_EQ(stats.keyframes, 2u);
+  EXPECT_EQ(stats.keyframes_expected, 2u);
+  EXPECT_EQ(stats.keyframes_own_masks, 1u);
+}
+
+TEST_F(DynamicFrontEndTest, RealtimeKeyFrameWaitIsBounded) {
+  // keyframeWaitMs 20 against a 600 ms network: the likely keyframe gives up and goes on.
+  const Sequence sequence = Render(1, false, nullptr, [](int) { return 0.0; });
+  DynamicFrontEndConfig config;
+  config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 600);
+  config.realtime = true;
+  config.segmentation.keyframe_wait_ms = 20.0;
+  StageTimings timings;
+  DynamicFrontEnd stage(config, 1000, map_, &timings);
+  stage.BeginFrame(0.0, sequence.bgr[0], true);
+  stage.Filter(Extract(sequence, 0), sequence.bgr[0], sequence.images[0].depth);
+  EXPECT_FALSE(stage.LastReport().own_masks);
+  EXPECT_EQ(stage.Stats().keyframe_waits, 1u);
+  EXPECT_EQ(stage.Stats().keyframe_waits_fresh, 0u);
+  const TimingSummary wait = timings.Summaries().at("segmentation_wait");
+  EXPECT_GE(wait.max_ms, 19.0);
+  EXPECT_LT(wait.max_ms, 400.0);  // generous: far below the network's 600 ms
 }
 
 TEST_F(DynamicFrontEndTest, CallOrderIsChecked) {

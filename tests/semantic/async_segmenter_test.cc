@@ -114,6 +114,42 @@ TEST(AsyncSegmenterTest, BusyWorkerDropsQueuedFramesInRealtimeMode) {
   EXPECT_EQ(segmenter.Latest()->segmentation.frame_index, 5u);
 }
 
+TEST(AsyncSegmenterTest, FreeNetworkAlwaysTakesTheNewestFrameInRealtimeMode) {
+  // The default queue capacity (2) is ignored at sensor rate: one frame waits at most, so the
+  // worker goes from frame 1 straight to the newest, 5 (with a 2-deep queue it took 4 first).
+  auto fake = std::make_shared<FakeSegmenter>();
+  AsyncSegmenterOptions options;
+  options.drop_when_busy = true;
+  AsyncSegmenter segmenter(fake, options);
+  fake->Close();
+  segmenter.Submit(1, 0.0, kImage);
+  fake->AwaitStarted(1);
+  for (std::size_t i = 2; i <= 5; ++i) segmenter.Submit(i, 0.0, kImage);
+  fake->Open();
+  EXPECT_EQ(segmenter.Wait(5)->segmentation.frame_index, 5u);
+  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{1, 5}));
+  EXPECT_EQ(segmenter.Stats().dropped, 3u);
+}
+
+TEST(AsyncSegmenterTest, WaitForGivesUpAtItsDeadline) {
+  auto fake = std::make_shared<FakeSegmenter>();
+  AsyncSegmenterOptions options;
+  options.drop_when_busy = true;
+  AsyncSegmenter segmenter(fake, options);
+  fake->Close();
+  segmenter.Submit(1, 0.0, kImage);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(segmenter.WaitFor(1, 50.0), nullptr);
+  const double waited = MillisecondsSince(start);
+  EXPECT_GE(waited, 49.0);
+  EXPECT_LT(waited, 1000.0);                         // bounded, not until the gate opens
+  EXPECT_EQ(segmenter.WaitFor(7, 1000.0), nullptr);  // never submitted: no wait, no throw
+  fake->Open();
+  const auto frame = segmenter.WaitFor(1, 5000.0);
+  ASSERT_NE(frame, nullptr);
+  EXPECT_EQ(frame->segmentation.frame_index, 1u);
+}
+
 TEST(AsyncSegmenterTest, OldResultsAreForgottenBeyondTheKeepLimit) {
   AsyncSegmenterOptions options;
   options.keep_results = 2;

@@ -71,22 +71,82 @@ void DynamicFrontEnd::Record(const char* stage, double ms) {
   if (timings_ != nullptr) timings_->Record(stage, ms);
 }
 
-int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr) {
+int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr, bool keyframe_likely) {
   if (begun_) throw Error("DynamicFrontEnd: BeginFrame called twice without Filter");
   begun_ = true;
   if (async_) async_->Submit(next_index_, timestamp, bgr);
   report_ = DynamicFrameReport();
   report_.frame_index = next_index_;
   report_.timestamp = timestamp;
+  report_.keyframe_likely = keyframe_likely;
   report_.feature_target = BoostedFeatureTarget(base_features_, previous_share_, config_.options);
   if (report_.feature_target != base_features_) ++stats_.frames_boosted;
   return report_.feature_target;
+}
+
+cv::Mat DynamicFrontEnd::MovingSkipMask() {
+  if (!begun_) throw Error("DynamicFrontEnd: MovingSkipMask called without BeginFrame");
+  if (!config_.options.skip_moving_extraction || moving_instances_.empty()) return cv::Mat();
+  const cv::Size size = moving_instances_.front().mask.size();
+  const cv::Rect whole(0, 0, size.width, size.height);
+  const std::shared_ptr<const SegmentedFrame> own =
+      async_ ? async_->TryGet(report_.frame_index) : nullptr;
+  std::vector<Instance> chosen;
+  if (own && own->segmentation.image_size == size) {
+    // The frame's own masks are placed where the objects are now: those lying mostly on the
+    // last frame's moving objects are taken to be the same objects, still moving.
+    cv::Mat last_moving = cv::Mat::zeros(size, CV_8UC1);
+    for (const Instance& instance : moving_instances_) {
+      const cv::Rect box = instance.box & whole;
+      cv::Mat roi = last_moving(box);
+      cv::bitwise_or(roi, instance.mask(box), roi);
+    }
+    for (const Instance& instance : own->segmentation.instances) {
+      if (!classes_->IsPotentiallyMoving(instance.class_id)) continue;
+      if (instance.mask.size() != size || instance.mask.type() != CV_8UC1) continue;
+      const cv::Rect box = instance.box & whole;
+      if (box.area() <= 0) continue;
+      const int area = cv::countNonZero(instance.mask(box));
+      cv::Mat overlap;
+      cv::bitwise_and(instance.mask(box), last_moving(box), overlap);
+      if (area > 0 && 2 * cv::countNonZero(overlap) >= area) chosen.push_back(instance);
+    }
+  } else {
+    chosen = moving_instances_;
+  }
+  if (chosen.empty()) return cv::Mat();
+  RemovalPlan plan;
+  plan.remove.assign(chosen.size(), true);
+  cv::Mat skip = RemovalMask(chosen, plan, size, config_.options);
+  report_.skip_share = static_cast<double>(cv::countNonZero(skip)) / size.area();
+  ++stats_.frames_skip_mask;
+  skip_share_sum_ += report_.skip_share;
+  return skip;
+}
+
+void DynamicFrontEnd::NoteKeyFrame(bool became_keyframe) {
+  if (!became_keyframe) return;
+  ++stats_.keyframes;
+  if (report_.keyframe_likely) ++stats_.keyframes_expected;
+  if (report_.own_masks) ++stats_.keyframes_own_masks;
 }
 
 Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
   Segmentation segmentation;
   if (masks_) {
     const Stopwatch wait;
+    if (!config_.realtime) {
+      report_.own_masks = true;
+    } else {
+      // Keyframe priority: a likely keyframe waits a bounded time for its own masks, when the
+      // network is on its image or about to be (else another forward pass is ahead: no use).
+      const double wait_ms = config_.segmentation.keyframe_wait_ms;
+      if (report_.keyframe_likely && wait_ms > 0.0 && async_->TakenOrNext(next_index_)) {
+        ++stats_.keyframe_waits;
+        if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
+      }
+      report_.own_masks = async_->TryGet(next_index_) != nullptr;
+    }
     segmentation = masks_->MasksFor(next_index_, timestamp, bgr);
     Record("segmentation_wait", wait.ElapsedMs());
     // The network's own time for this frame (on the segmentation thread, or inline when
@@ -248,6 +308,10 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   }
   stats_.ids_issued = moving_class_ids_.size();
 
+  moving_instances_.clear();
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    if (potentially_moving[k] && moving[k]) moving_instances_.push_back(instances[k]);
+  }
   previous_share_ = plan.share;
   previous_ = Previous{std::move(flow), all_features, instances, exclusion,
                        depth.empty() ? cv::Mat() : depth.clone()};
@@ -300,6 +364,9 @@ void DynamicFrontEnd::WriteObjectRows() {
 
 DynamicStats DynamicFrontEnd::Stats() const {
   DynamicStats stats = stats_;
+  stats.skip_share_mean = stats.frames_skip_mask > 0
+                              ? skip_share_sum_ / static_cast<double>(stats.frames_skip_mask)
+                              : 0.0;
   if (async_) stats.segmentation = async_->Stats();
   if (masks_) stats.latency = masks_->Latency();
   return stats;

@@ -2,18 +2,27 @@
 // pipeline). Per frame:
 //   BeginFrame (before extraction): hands the image to the segmentation thread (AsyncSegmenter)
 //     and returns the feature target, raised when people covered much of the previous frame.
+//   MovingSkipMask (before extraction): where the objects believed moving are, so the extractor
+//     spends its feature budget on the background (Dynamic.skipMovingExtraction).
 //   Filter (after extraction): takes this frame's masks (waiting for them; with --realtime the
 //     newest ones, carried to this image by optical flow), runs motion consistency, object IDs,
 //     motion states, map-point culling and adaptive removal, and returns the frame with the
 //     static features only.
 //   AfterTracking: files the map points matched on still objects, so they can be culled when
 //     the object starts moving.
-// Stage timings recorded (ms per frame): segmentation (the network's time for the frame),
-// segmentation_wait (how long tracking waited for masks), motion_consistency (flow, scene model,
-// reprojection test), removal (IDs, motion states, culling, removal, filtering).
-// Works without a segmenter too (geometry only: moving points grouped into regions). Used by
-// the tracking thread only; in sequential mode segmentation runs inline and the output is
-// bit-identical from run to run.
+// Segmentation scheduling with --realtime: the network always starts on the newest frame (a
+// one-frame slot in AsyncSegmenter), and keyframes get priority for fresh masks: a frame that
+// tracking expects to become a keyframe (Tracker::KeyFrameLikely, told to BeginFrame) and whose
+// image the network is on (or about to be: no other frame ahead of it) waits at most
+// Segmentation.keyframeWaitMs for its own masks; other frames never wait. Chosen over segmenting
+// keyframes after their creation because a keyframe's features become map points at creation: masks
+// that arrive later could only remove them again, while a short wait keeps moving features out of
+// the map in the first place, at a bounded cost to the frame. Stage timings recorded (ms per
+// frame): segmentation (the network's time for the frame), segmentation_wait (how long tracking
+// waited for masks, keyframe waits included), motion_consistency (flow, scene model, reprojection
+// test), removal (IDs, motion states, culling, removal, filtering). Works without a segmenter too
+// (geometry only: moving points grouped into regions). Used by the tracking thread only; in
+// sequential mode segmentation runs inline and the output is bit-identical from run to run.
 #pragma once
 
 #include <fstream>
@@ -66,6 +75,9 @@ struct DynamicFrameReport {
   double share = 0.0;  // image share of potentially-moving objects
   bool large_share = false;
   int feature_target = 0;
+  bool keyframe_likely = false;  // tracking expected this frame to become a keyframe
+  bool own_masks = false;        // the frame's own masks (not carried ones) were used
+  double skip_share = 0.0;       // image share where extraction was skipped (moving objects)
   int features_extracted = 0;
   int removed_on_objects = 0;
   int removed_unlabelled = 0;
@@ -87,6 +99,16 @@ struct DynamicStats {
   std::size_t ids_issued = 0;  // distinct IDs of potentially-moving objects
   std::size_t unlabelled_regions = 0;
   std::size_t map_points_culled = 0;
+  // Extraction skipped on moving objects: frames with a skip mask and their mean image share.
+  std::size_t frames_skip_mask = 0;
+  double skip_share_mean = 0.0;
+  // Keyframe priority (--realtime): keyframes made, those expected beforehand, those tracked
+  // with their own masks, and the bounded waits (and how many got their masks in time).
+  std::size_t keyframes = 0;
+  std::size_t keyframes_expected = 0;
+  std::size_t keyframes_own_masks = 0;
+  std::size_t keyframe_waits = 0;
+  std::size_t keyframe_waits_fresh = 0;
   std::string segmenter;  // backend name, or "none"
   bool realtime = false;
   std::optional<AsyncSegmenterStats> segmentation;
@@ -102,8 +124,18 @@ class DynamicFrontEnd {
   DynamicFrontEnd(const DynamicFrontEnd&) = delete;
   DynamicFrontEnd& operator=(const DynamicFrontEnd&) = delete;
 
-  // Starts segmenting `bgr`; returns the feature target for its extraction.
-  int BeginFrame(double timestamp, const cv::Mat& bgr);
+  // Starts segmenting `bgr`; returns the feature target for its extraction. keyframe_likely:
+  // tracking expects the frame to become a keyframe (with --realtime it may then wait
+  // Segmentation.keyframeWaitMs for its own masks).
+  int BeginFrame(double timestamp, const cv::Mat& bgr, bool keyframe_likely = false);
+  // After BeginFrame, before extraction: CV_8UC1 of the image's size, 255 where no features
+  // should be extracted: the newest masks of the objects believed moving (this frame's own masks
+  // when they are ready, matched to the last frame's moving objects by overlap, else the last
+  // frame's), dilated by Dynamic.maskDilation. Empty when there is nothing to skip or
+  // Dynamic.skipMovingExtraction is off.
+  cv::Mat MovingSkipMask();
+  // After tracking the frame: whether it became a keyframe (for the keyframe statistics).
+  void NoteKeyFrame(bool became_keyframe);
   // `frame` was extracted from `bgr` (the image BeginFrame got) with `depth` (CV_32FC1 metres).
   // Returns the frame with the removed features taken out (same id and timestamp).
   Frame Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth);
@@ -144,6 +176,8 @@ class DynamicFrontEnd {
   bool begun_ = false;
   double previous_share_ = 0.0;
   std::optional<Previous> previous_;
+  std::vector<Instance> moving_instances_;  // the last frame's objects judged moving
+  double skip_share_sum_ = 0.0;
   std::set<int> moving_class_ids_;
   std::ofstream objects_csv_;
   DynamicFrameReport report_;

@@ -131,6 +131,8 @@ DynamicOptions LoadDynamicOptions(const SettingsFile& file) {
     o.region_depth_step = file.GetDouble("Dynamic.regionDepthStep", o.region_depth_step);
     o.region_margin = file.GetDouble("Dynamic.regionMargin", o.region_margin);
     o.cull_moving_points = file.GetBool("Dynamic.cullMovingPoints", o.cull_moving_points);
+    o.skip_moving_extraction =
+        file.GetBool("Dynamic.skipMovingExtraction", o.skip_moving_extraction);
     o.Check();
   } catch (const Error& e) {
     const std::string message = e.what();

@@ -96,6 +96,14 @@ struct DynamicOptions {
   // Map points.
   bool cull_moving_points = true;  // Dynamic.cullMovingPoints
 
+  // Dynamic.skipMovingExtraction: no ORB features are extracted on the objects the stage
+  // believes moving (their newest masks, dilated by maskDilation), so the extractor spends its
+  // feature budget on the background instead of on features removal would drop. Off by
+  // default: those objects then have no flow tracks of their own, which object IDs, motion
+  // states and carrying masks by an object's own features rely on (measured on a synthetic
+  // walking sequence: 4x fewer features removed, the same ATE, but 3x as many object IDs).
+  bool skip_moving_extraction = false;
+
   // Throws drvslam::Error naming the first bad Dynamic.* key and its value.
   void Check() const;
 };

@@ -23,6 +23,14 @@ nlohmann::json DynamicStatsJson(const DynamicStats& s) {
            {{"ids", s.ids_issued},
             {"sightings", s.object_frames},
             {"moving_sightings", s.moving_object_frames}}},
+          {"skip_moving_extraction",
+           {{"frames", s.frames_skip_mask}, {"mean_image_share", s.skip_share_mean}}},
+          {"keyframe_masks",
+           {{"keyframes", s.keyframes},
+            {"expected", s.keyframes_expected},
+            {"own_masks", s.keyframes_own_masks},
+            {"waits", s.keyframe_waits},
+            {"waits_fresh", s.keyframe_waits_fresh}}},
           {"unlabelled_regions", s.unlabelled_regions},
           {"map_points_culled", s.map_points_culled}};
 }

@@ -1,5 +1,6 @@
 #include "drvslam/semantic/async_segmenter.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iterator>
 #include <optional>
@@ -11,7 +12,10 @@ namespace drvslam {
 
 AsyncSegmenter::AsyncSegmenter(std::shared_ptr<Segmenter> segmenter,
                                const AsyncSegmenterOptions& options)
-    : segmenter_(std::move(segmenter)), options_(options), queue_(options.queue_capacity) {
+    : segmenter_(std::move(segmenter)),
+      options_(options),
+      // Sensor rate: one waiting frame at most, so the network always starts on the newest.
+      queue_(options.drop_when_busy ? 1 : options.queue_capacity) {
   if (!segmenter_) throw Error("AsyncSegmenter: no segmenter given");
   if (options_.keep_results == 0) options_.keep_results = 1;
   if (!options_.sequential) worker_ = std::thread([this] { WorkerLoop(); });
@@ -149,6 +153,39 @@ std::shared_ptr<const SegmentedFrame> AsyncSegmenter::Wait(std::size_t frame_ind
       throw Error("AsyncSegmenter: frame " + std::to_string(frame_index) +
                   " was dropped because segmentation was busy");
   }
+}
+
+std::shared_ptr<const SegmentedFrame> AsyncSegmenter::WaitFor(std::size_t frame_index,
+                                                              double timeout_ms) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double, std::milli>(std::max(0.0, timeout_ms)));
+  std::unique_lock<std::mutex> lock(mutex_);
+  // A frame replaced in the slot is marked dropped only when the worker takes the next one:
+  // waiting for it just runs into the deadline.
+  finished_.wait_until(lock, deadline, [&] {
+    const auto slot = slots_.find(frame_index);
+    return slot == slots_.end() ||
+           (slot->second.state != State::kQueued && slot->second.state != State::kRunning);
+  });
+  const auto slot = slots_.find(frame_index);
+  if (slot == slots_.end() || slot->second.state != State::kDone) return nullptr;
+  return slot->second.result;
+}
+
+bool AsyncSegmenter::TakenOrNext(std::size_t frame_index) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto slot = slots_.find(frame_index);
+  if (slot == slots_.end()) return false;
+  if (slot->second.state == State::kRunning || slot->second.state == State::kDone) return true;
+  if (slot->second.state != State::kQueued) return false;
+  for (const auto& [index, other] : slots_) {
+    if (index != frame_index && (other.state == State::kRunning ||
+                                 (other.state == State::kQueued && index < frame_index))) {
+      return false;
+    }
+  }
+  return true;
 }
 
 std::shared_ptr<const SegmentedFrame> AsyncSegmenter::TryGet(std::size_t frame_index) const {

@@ -1,8 +1,10 @@
 // AsyncSegmenter: the segmentation thread. Submit() hands it a frame as soon as the frame
 // arrives, so the network runs while the caller extracts ORB features; Wait() then collects
 // that frame's masks. In sequential mode Submit() segments inline, so runs are deterministic.
-// With drop_when_busy (sensor-rate tracking), frames queued behind a slow network are dropped
-// instead of piling up, and Latest() gives the newest finished masks without blocking.
+// With drop_when_busy (sensor-rate tracking) the worker's input is a one-frame slot: Submit never
+// blocks, a newer frame replaces one still waiting (counted as dropped), so whenever the network
+// becomes free it takes the newest frame; Latest() gives the newest finished masks and
+// WaitFor() a frame's own masks within a bounded time, neither blocking longer.
 #pragma once
 
 #include <condition_variable>
@@ -31,8 +33,8 @@ struct SegmentedFrame {
 
 struct AsyncSegmenterOptions {
   bool sequential = false;         // segment inside Submit() on the caller's thread
-  std::size_t queue_capacity = 2;  // frames waiting for the worker
-  bool drop_when_busy = false;     // a full queue drops its oldest frame instead of blocking
+  std::size_t queue_capacity = 2;  // frames waiting for the worker (1 with drop_when_busy)
+  bool drop_when_busy = false;     // a newer frame replaces a waiting one instead of blocking
   std::size_t keep_results = 8;    // finished frames kept for Wait()/TryGet()
 };
 
@@ -62,6 +64,12 @@ class AsyncSegmenter {
   // exception for that frame; throws drvslam::Error when the frame was never submitted, was
   // dropped, or its result is no longer kept.
   std::shared_ptr<const SegmentedFrame> Wait(std::size_t frame_index);
+  // Waits at most `timeout_ms` for frame `frame_index`; its result when it finished in time,
+  // else nullptr (also when it failed, was dropped or is unknown: never throws).
+  std::shared_ptr<const SegmentedFrame> WaitFor(std::size_t frame_index, double timeout_ms);
+  // Whether no other frame is ahead of that one: it is being segmented or finished, or it waits
+  // while no frame is being segmented (the worker is about to take it); never blocks.
+  bool TakenOrNext(std::size_t frame_index) const;
   // That frame's result when it is finished, else nullptr; never blocks.
   std::shared_ptr<const SegmentedFrame> TryGet(std::size_t frame_index) const;
   // The finished frame with the highest index, or nullptr; never blocks.

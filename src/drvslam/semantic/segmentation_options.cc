@@ -74,7 +74,9 @@ void SegmentationOptions::Check() const {
   Require(max_detections >= 1 && max_detections <= 10000, "Segmentation.maxDetections",
           max_detections, "must be in 1..10000");
   Require(dnn_threads >= 0 && dnn_threads <= 1024, "Segmentation.dnnThreads", dnn_threads,
-          "must be in 0..1024 (0 keeps OpenCV's default)");
+          "must be in 0..1024 (0 = the thread budget)");
+  Require(std::isfinite(keyframe_wait_ms) && keyframe_wait_ms >= 0.0 && keyframe_wait_ms <= 1000.0,
+          "Segmentation.keyframeWaitMs", keyframe_wait_ms, "must be in [0, 1000] ms");
   const bool cuda_target = dnn_target == DnnTarget::kCuda || dnn_target == DnnTarget::kCudaFp16;
   Require(!(dnn_backend == DnnBackend::kOpenCv && cuda_target), "Segmentation.dnnTarget",
           dnn_target == DnnTarget::kCuda ? "cuda" : "cuda_fp16",
@@ -111,6 +113,7 @@ SegmentationOptions LoadSegmentationOptions(const SettingsFile& file) {
         ParseEnum(file.GetString("Segmentation.dnnTarget", EnumName(o.dnn_target, kDnnTargets)),
                   "Segmentation.dnnTarget", kDnnTargets);
     o.dnn_threads = file.GetInt("Segmentation.dnnThreads", o.dnn_threads);
+    o.keyframe_wait_ms = file.GetDouble("Segmentation.keyframeWaitMs", o.keyframe_wait_ms);
     o.masks_dir = file.GetString("Segmentation.masksDir", o.masks_dir);
     o.mask_naming =
         ParseEnum(file.GetString("Segmentation.maskNaming", EnumName(o.mask_naming, kNamings)),

@@ -30,7 +30,20 @@ struct SegmentationOptions {
   int max_detections = 100;
   DnnBackend dnn_backend = DnnBackend::kAuto;
   DnnTarget dnn_target = DnnTarget::kAuto;
-  int dnn_threads = 0;  // 0 keeps OpenCV's thread count (process-wide in OpenCV)
+  // Segmentation.dnnThreads: OpenCV's thread pool for the whole process. The pool is
+  // process-global (cv::dnn shares it with ORB's image pyramid, optical flow and imgproc on the
+  // tracking thread), so it is applied once, by ApplyOpenCvThreadBudget (core/thread_budget.h),
+  // never by a segmenter. 0 = the budget: 1 when the pipeline threads run concurrently (each
+  // stage then is one OS thread and the scheduler shares the cores), OpenCV's default (every
+  // core) in sequential runs.
+  int dnn_threads = 0;
+  // Segmentation.keyframeWaitMs (--realtime only): a frame that tracking expects to become a
+  // keyframe (Tracker::KeyFrameLikely), and whose image the network is on (no other frame
+  // ahead of it),
+  // waits at most this long for its own masks before it falls back to carried ones; other
+  // frames never wait. The default is about one 320x256 forward pass on one idle core minus
+  // extraction: shorter waits almost never see the masks arrive. 0 = keyframes never wait.
+  double keyframe_wait_ms = 50.0;
 
   std::string masks_dir = "masks";  // mask-file backend; relative paths are under the dataset
   MaskNaming mask_naming = MaskNaming::kAuto;

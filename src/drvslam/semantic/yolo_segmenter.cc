@@ -173,7 +173,6 @@ YoloSegmenter::YoloSegmenter(const SegmentationOptions& options) : options_(opti
   }
   class_names_ = ChooseClassNames(options, info, num_classes_, path);
   ChooseDevice(net_, options, device_);
-  if (options.dnn_threads > 0) cv::setNumThreads(options.dnn_threads);
   spdlog::debug("{}: input {}x{}, {} classes, {} mask coefficients, prototypes {}x{}, {}", path,
                 input_size_.width, input_size_.height, num_classes_, num_coefficients_,
                 prototype_size_.width, prototype_size_.height, device_);

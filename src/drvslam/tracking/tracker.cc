@@ -115,6 +115,7 @@ TrackingResult Tracker::Track(Frame frame) {
   }
   result.inliers = matches_inliers_;
   if (NeedNewKeyFrame()) {
+    last_evidence_.reset();
     last_keyframe_ = CreateKeyFrame(*current_, map_, options_.new_points_per_keyframe);
     AttachBow(*last_keyframe_);
     last_keyframe_frame_id_ = current_->Id();
@@ -142,6 +143,7 @@ bool Tracker::Initialize() {
   last_keyframe_ = keyframe;
   last_keyframe_frame_id_ = current_->Id();
   velocity_.reset();
+  last_evidence_.reset();
   return true;
 }
 
@@ -293,11 +295,20 @@ bool Tracker::NeedNewKeyFrame() const {
       ++evidence.close_untracked;
     }
   }
+  last_evidence_ = evidence;
   // A keyframe is wanted while mapping is busy: its bundle adjustment gives way.
   if (mapping_ != nullptr && !evidence.mapping_idle && WantNewKeyFrame(evidence)) {
     mapping_->InterruptBundleAdjustment();
   }
   return ::drvslam::NeedNewKeyFrame(evidence);
+}
+
+bool Tracker::KeyFrameLikely() const {
+  if (state_ != TrackingState::kOk || !last_evidence_) return false;
+  KeyFrameEvidence next = *last_evidence_;
+  ++next.frames_since_keyframe;
+  next.tracked_inliers = next.tracked_inliers * 9 / 10;
+  return ::drvslam::NeedNewKeyFrame(next);
 }
 
 void Tracker::CheckReplacedInLastFrame() {

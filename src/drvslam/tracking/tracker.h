@@ -12,6 +12,7 @@
 #include "drvslam/map/map.h"
 #include "drvslam/match/orb_matcher.h"
 #include "drvslam/optim/pose_optimizer.h"
+#include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/local_map.h"
 #include "drvslam/tracking/mapping_status.h"
 #include "drvslam/tracking/place_recognition.h"
@@ -48,6 +49,11 @@ class Tracker {
   }
 
   TrackingState State() const { return state_; }
+  // A guess, before the next frame is tracked, that it will become a keyframe: the last
+  // frame's keyframe evidence, one frame older and with 10 % fewer inliers, already asks for
+  // one. False while not tracking and right after a keyframe. Lets the dynamic stage give
+  // likely keyframes their own masks (Segmentation.keyframeWaitMs).
+  bool KeyFrameLikely() const;
   const TrajectoryRecorder& Recorder() const { return recorder_; }
   // The last tracked frame (nullopt before the first one).
   const std::optional<Frame>& LastFrame() const { return last_frame_; }
@@ -105,6 +111,8 @@ class Tracker {
   TrajectoryRecorder recorder_;
   std::atomic<bool> map_corrected_{false};
   SE3 last_frame_T_cr_;  // the last frame relative to its reference keyframe
+  // The last keyframe decision's evidence (for KeyFrameLikely); reset when a keyframe is made.
+  mutable std::optional<KeyFrameEvidence> last_evidence_;
 };
 
 }  // namespace drvslam

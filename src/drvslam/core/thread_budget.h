@@ -1,0 +1,23 @@
+// The process's thread budget. Each pipeline stage is one OS thread of its own: tracking (the
+// caller's), segmentation (AsyncSegmenter), local mapping, loop closing and dense mapping.
+// OpenCV's parallel_for_ pool is process-global: cv::setNumThreads changes it for cv::dnn on the
+// segmentation thread and equally for ORB's pyramid, optical flow and imgproc on the tracking
+// thread, and with OpenCV's TBB backend a thread that enters a parallel loop while another
+// thread's loop occupies the pool can end up waiting for the pool's workers. So when stages run
+// concurrently the pool is set to one thread: every OpenCV call then runs on the thread that made
+// it, each stage costs exactly one thread, and the OS scheduler shares the cores between them (on 2
+// cores: tracking and the network each get one while mapping and dense mapping sleep, and preempt
+// both briefly when a keyframe arrives). A sequential run has one thread only, so there OpenCV
+// keeps every core.
+#pragma once
+
+namespace drvslam {
+
+// The OpenCV pool size for a run: `configured` (Segmentation.dnnThreads) when positive, else
+// 1 for concurrent stages and 0 (OpenCV's default: every core) for a sequential run.
+int ChooseOpenCvThreads(int configured, bool sequential);
+
+// Applies the choice (0 = OpenCV's default) once for the process; logs it at info level.
+void ApplyOpenCvThreadBudget(int threads);
+
+}  // namespace drvslam

@@ -1,0 +1,67 @@
+// RealtimeFeeder: plays a recorded sequence as a live camera would deliver it. A feeder thread
+// loads each frame ahead of time (imread and depth conversion happen there, not on the tracking
+// thread) and hands it over at its timestamp, relative to the moment the feeder started, through
+// a one-frame slot (LatestFrameSlot): a frame that arrives while the previous one still waits
+// replaces it, and is counted as skipped. The consumer (the tracking thread) thus always gets the
+// newest frame and never falls behind the sensor by more than the frame it is working on. The
+// sensor does not wait for the loader either: when loading falls behind (a loaded machine),
+// frames whose successor is already due are not loaded at all and count as skipped too.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "drvslam/core/latest_frame_slot.h"
+#include "drvslam/io/tum_dataset.h"
+
+namespace drvslam {
+
+class RealtimeFeeder {
+ public:
+  // Starts delivering frames [0, count) of `dataset` (which must outlive this object); frame i
+  // arrives (timestamp(i) - timestamp(0)) / rate seconds after construction. rate > 0: 2 plays a
+  // 30 Hz sequence at 60 Hz.
+  RealtimeFeeder(const TumDataset& dataset, std::size_t count, double rate = 1.0);
+  // Stop.
+  ~RealtimeFeeder();
+  RealtimeFeeder(const RealtimeFeeder&) = delete;
+  RealtimeFeeder& operator=(const RealtimeFeeder&) = delete;
+
+  // Blocks until a frame has arrived and returns the newest one not yet taken; std::nullopt
+  // once every frame was delivered (or Stop was called). When a frame failed to load, the frames
+  // before it are delivered first, then this rethrows its Error.
+  std::optional<RgbdFrame> Next();
+  // Ends the delivery early and joins the feeder thread (the counts below are final then); Next
+  // then returns what still waits, then nullopt. Call from the consumer's thread.
+  void Stop();
+
+  // Frames that arrived but were never taken: replaced in the slot by a newer one, or not even
+  // loaded because a newer one was already due (SkippedWhileLoading).
+  std::size_t Skipped() const { return slot_.Skipped() + SkippedWhileLoading(); }
+  std::size_t SkippedWhileLoading() const;
+  // Frames that arrived so far (taken, skipped or waiting).
+  std::size_t Arrived() const { return slot_.Accepted() + SkippedWhileLoading(); }
+  // The most a frame was handed over after its timestamp (the time to load it, when it was
+  // started late), in ms.
+  double MaxArrivalLagMs() const;
+
+ private:
+  void Play(std::size_t count, double rate);
+
+  const TumDataset& dataset_;
+  LatestFrameSlot<RgbdFrame> slot_;
+  mutable std::mutex mutex_;  // guards stopping_, error_, max_lag_ms_ and skipped_loading_
+  std::condition_variable stop_requested_;
+  bool stopping_ = false;
+  std::exception_ptr error_;
+  double max_lag_ms_ = 0.0;
+  std::size_t skipped_loading_ = 0;
+  std::thread thread_;
+};
+
+}  // namespace drvslam
