@@ -3,19 +3,25 @@
 //   BeginFrame (before extraction): hands the image to the segmentation thread (AsyncSegmenter)
 //     and returns the feature target, raised when people covered much of the previous frame.
 //   Filter (after extraction): takes this frame's masks (waiting for them; with --realtime the
-//     newest ones, carried to this image by optical flow), runs motion consistency, object IDs,
+//     newest ones, carried to this image: by default object by object along the frame-to-frame
+//     flow tracks that motion consistency computes anyway (ObjectMaskCarrier, masks k-1 -> k
+//     with the k-1 -> k tracks, so the cost is per frame, not per frame of lag); with
+//     Segmentation.propagation dense/sparse by MaskPropagator's own optical flow), runs motion
+//     consistency, object IDs,
 //     motion states, map-point culling and adaptive removal, and returns the frame with the
 //     static features only.
 //   AfterTracking: files the map points matched on still objects, so they can be culled when
 //     the object starts moving.
 // Stage timings recorded (ms per frame): segmentation (the network's time for the frame),
-// segmentation_wait (how long tracking waited for masks), motion_consistency (flow, scene model,
+// segmentation_wait (how long tracking waited for masks, or carried them), motion_consistency
+// (flow, scene model,
 // reprojection test), removal (IDs, motion states, culling, removal, filtering).
 // Works without a segmenter too (geometry only: moving points grouped into regions). Used by
 // the tracking thread only; in sequential mode segmentation runs inline and the output is
 // bit-identical from run to run.
 #pragma once
 
+#include <deque>
 #include <fstream>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -36,6 +42,7 @@
 #include "drvslam/semantic/async_segmenter.h"
 #include "drvslam/semantic/class_table.h"
 #include "drvslam/semantic/mask_source.h"
+#include "drvslam/semantic/object_mask_carrier.h"
 #include "drvslam/semantic/segmentation_options.h"
 #include "drvslam/semantic/segmenter.h"
 
@@ -123,6 +130,11 @@ class DynamicFrontEnd {
   };
 
   Segmentation MasksFor(double timestamp, const cv::Mat& bgr);
+  // Realtime, objects propagation: this frame's own masks when finished, else masks carried
+  // along `tracks` (previous frame -> this one): newer finished masks through the stored tracks
+  // of the frames since theirs, otherwise the previous frame's (carried) masks.
+  Segmentation CarriedMasksFor(double timestamp, const cv::Size& size,
+                               const std::vector<FlowTrack>& tracks);
   void Record(const char* stage, double ms);
   void WriteDebugPicture(const cv::Mat& bgr, const std::vector<cv::KeyPoint>& kept,
                          const std::vector<cv::KeyPoint>& removed) const;
@@ -135,6 +147,14 @@ class DynamicFrontEnd {
   std::unique_ptr<ClassTable> classes_;
   std::unique_ptr<AsyncSegmenter> async_;
   std::unique_ptr<MaskSource> masks_;
+  bool carry_objects_ = false;
+  ObjectMaskCarrier carrier_;
+  // Objects propagation: each recent frame's flow tracks from the frame before it (newest
+  // last, at most Segmentation.carryFrames), and the segmented frame the current carried masks
+  // came from.
+  std::deque<std::vector<PointMotion>> track_history_;
+  std::optional<std::size_t> carried_from_;
+  double carried_from_timestamp_ = 0.0;
   MotionConsistency consistency_;
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;
