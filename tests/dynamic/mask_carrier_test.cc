@@ -142,6 +142,10 @@ struct Walking {
   std::vector<Segmentation> truth;
 };
 
+// With seed 3 the people stand still for the first 25 frames (instances.txt's moving flags),
+// then walk.
+constexpr std::size_t kFirstWalkingFrame = 25;
+
 const Walking& WalkingSequence() {
   static const Walking walking = [] {
     Walking w;
@@ -150,12 +154,12 @@ const Walking& WalkingSequence() {
     fs::remove_all(folder);
     synth::SynthOptions options;
     options.scenario = "walking_xyz";
-    options.frames = 16;
+    options.frames = kFirstWalkingFrame + 16;
     options.seed = 3;
     synth::GenerateSequence(options, folder.string());
     const TumDataset dataset(folder.string(), TumDatasetOptions());
     GroundTruthSegmenter truth(folder.string());
-    for (std::size_t i = 0; i < dataset.Size(); ++i) {
+    for (std::size_t i = kFirstWalkingFrame; i < dataset.Size(); ++i) {
       const RgbdFrame frame = dataset.Read(i);
       cv::Mat gray;
       cv::cvtColor(frame.bgr, gray, cv::COLOR_BGR2GRAY);
@@ -169,9 +173,10 @@ const Walking& WalkingSequence() {
   return walking;
 }
 
-// Measured (seed 3, 30 Hz): mean IoU 0.974, 0.955, 0.936, 0.918 at lags 1..4, against 0.971,
-// 0.944, 0.919, 0.895 for masks left where they were. The bounds leave a margin of 0.02-0.04.
-constexpr double kMeanIoUBound[] = {0.95, 0.93, 0.90, 0.88};
+// Measured (seed 3, 30 Hz, frames 25..40): mean IoU 0.957, 0.923, 0.893, 0.868 at lags 1..4,
+// against 0.944, 0.895, 0.850, 0.809 for masks left where they were. The bounds leave a margin
+// of 0.03-0.04.
+constexpr double kMeanIoUBound[] = {0.93, 0.89, 0.86, 0.83};
 
 TEST(MaskCarryingTest, MasksAreCarriedOntoWalkingPeopleWithinAnIoUBound) {
   const Walking& walking = WalkingSequence();
@@ -192,9 +197,9 @@ TEST(MaskCarryingTest, MasksAreCarriedOntoWalkingPeopleWithinAnIoUBound) {
                 carried[i].mean_iou, carried[i].min_iou, carried[i].samples, unmoved[i].mean_iou);
     EXPECT_GE(carried[i].samples, 10);
     EXPECT_GE(carried[i].mean_iou, kMeanIoUBound[i]);
-    // The people walk slowly against their size at 30 Hz: carrying must beat standing still
-    // once they had time to move.
-    if (carried[i].lag >= 2) EXPECT_GT(carried[i].mean_iou, unmoved[i].mean_iou + 0.005);
+    // Carrying must beat standing still once the people had time to move (measured: by 0.028,
+    // 0.043 and 0.059 at lags 2..4).
+    if (carried[i].lag >= 2) EXPECT_GT(carried[i].mean_iou, unmoved[i].mean_iou + 0.015);
   }
 }
 

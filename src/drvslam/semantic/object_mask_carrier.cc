@@ -57,6 +57,9 @@ void ObjectMaskCarrierOptions::Check() const {
   }
   if (min_fit < 2) throw Error("mask carrier: min_fit must be at least 2");
   if (!(ransac_threshold > 0.0)) throw Error("mask carrier: ransac_threshold must be positive");
+  if (!(min_inlier_share >= 0.0 && min_inlier_share <= 1.0)) {
+    throw Error("mask carrier: min_inlier_share must be in [0, 1]");
+  }
   if (min_area < 1) throw Error("mask carrier: min_area must be at least 1");
 }
 
@@ -96,10 +99,11 @@ std::vector<Instance> ObjectMaskCarrier::Carry(const std::vector<Instance>& inst
       std::vector<uchar> inliers;
       const cv::Mat fitted = cv::estimateAffinePartial2D(from, to, inliers, cv::RANSAC,
                                                          options_.ransac_threshold, 200, 0.99, 10);
-      if (!fitted.empty()) {
+      const int inlier_count = fitted.empty() ? 0 : cv::countNonZero(inliers);
+      if (inlier_count >= options_.min_inlier_share * object.support) {
         object.motion = cv::Matx23d(fitted);
         object.fitted = true;
-        object.inliers = cv::countNonZero(inliers);
+        object.inliers = inlier_count;
       }
     }
     if (!object.fitted) {

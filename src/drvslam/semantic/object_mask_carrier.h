@@ -28,7 +28,10 @@ struct ObjectMaskCarrierOptions {
   int min_support = 3;            // fewer correspondences inside a mask: the instance is dropped
   int min_fit = 6;                // fewer: median translation instead of a similarity fit
   double ransac_threshold = 2.0;  // similarity fit inlier distance, pixels
-  int min_area = 20;              // moved masks smaller than this (pixels) are dropped
+  // A fit explaining a smaller share of the correspondences is no rigid motion (a walking
+  // person's limbs and body move apart): the median translation is used instead.
+  double min_inlier_share = 0.5;
+  int min_area = 20;  // moved masks smaller than this (pixels) are dropped
   // Throws drvslam::Error naming the bad value.
   void Check() const;
 };
