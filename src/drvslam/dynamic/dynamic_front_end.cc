@@ -146,11 +146,11 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
     const std::size_t lag = next_index_ - found.frame_index;
     if ((!carried_from_ || found.frame_index > *carried_from_) && lag <= track_history_.size()) {
       // Newer masks than the carried ones: through each frame's tracks since theirs.
-      std::vector<Instance> instances = found.instances;
+      std::vector<const std::vector<PointMotion>*> steps;
       for (std::size_t step = track_history_.size() - lag; step < track_history_.size(); ++step) {
-        instances = carrier_.Carry(instances, track_history_[step], size);
+        steps.push_back(&track_history_[step]);
       }
-      out.instances = std::move(instances);
+      out.instances = carrier_.CarryThrough(found.instances, steps, size);
       carried_from_ = found.frame_index;
       carried_from_timestamp_ = found.timestamp;
     } else if (carried_from_ && previous_) {

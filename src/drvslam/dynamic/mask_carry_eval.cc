@@ -91,10 +91,10 @@ std::vector<LagIoU> CarriedIoUByLag(const std::vector<Segmentation>& truth,
   }
   return IoUByLag(truth, max_lag, class_id, min_area,
                   [&](int k, int lag, const Instance& instance) {
-                    std::vector<Instance> carried = {instance};
-                    for (int step = 1; step <= lag && !carried.empty(); ++step) {
-                      carried = carrier.Carry(carried, tracks[k + step], instance.mask.size());
-                    }
+                    std::vector<const std::vector<PointMotion>*> steps;
+                    for (int step = 1; step <= lag; ++step) steps.push_back(&tracks[k + step]);
+                    const std::vector<Instance> carried =
+                        carrier.CarryThrough({instance}, steps, instance.mask.size());
                     return carried.empty() ? cv::Mat() : carried.front().mask;
                   });
 }

@@ -67,10 +67,61 @@ ObjectMaskCarrier::ObjectMaskCarrier(const ObjectMaskCarrierOptions& options) : 
   options_.Check();
 }
 
+CarriedObject ObjectMaskCarrier::FitStep(const Instance& source, const cv::Matx23d& carried,
+                                         const std::vector<PointMotion>& motions) const {
+  // A point of the frame before this step lies on the carried mask when it maps back onto the
+  // source mask.
+  cv::Matx23d back;
+  cv::invertAffineTransform(carried, back);
+  std::vector<cv::Point2f> from;
+  std::vector<cv::Point2f> to;
+  for (const PointMotion& m : motions) {
+    const cv::Point2f origin(
+        static_cast<float>(back(0, 0) * m.from.x + back(0, 1) * m.from.y + back(0, 2)),
+        static_cast<float>(back(1, 0) * m.from.x + back(1, 1) * m.from.y + back(1, 2)));
+    if (!Inside(source, origin)) continue;
+    from.push_back(m.from);
+    to.push_back(m.to);
+  }
+  CarriedObject step;
+  step.support = static_cast<int>(from.size());
+  if (step.support < options_.min_support) return step;
+  if (step.support >= options_.min_fit) {
+    std::vector<uchar> inliers;
+    const cv::Mat fitted = cv::estimateAffinePartial2D(from, to, inliers, cv::RANSAC,
+                                                       options_.ransac_threshold, 200, 0.99, 10);
+    const int inlier_count = fitted.empty() ? 0 : cv::countNonZero(inliers);
+    if (inlier_count >= options_.min_inlier_share * step.support) {
+      step.motion = cv::Matx23d(fitted);
+      step.fitted = true;
+      step.inliers = inlier_count;
+    }
+  }
+  if (!step.fitted) {
+    std::vector<float> dx(from.size());
+    std::vector<float> dy(from.size());
+    for (std::size_t i = 0; i < from.size(); ++i) {
+      dx[i] = to[i].x - from[i].x;
+      dy[i] = to[i].y - from[i].y;
+    }
+    step.motion(0, 2) = Median(std::move(dx));
+    step.motion(1, 2) = Median(std::move(dy));
+    step.inliers = step.support;
+  }
+  return step;
+}
+
 std::vector<Instance> ObjectMaskCarrier::Carry(const std::vector<Instance>& instances,
                                                const std::vector<PointMotion>& motions,
                                                const cv::Size& size,
                                                std::vector<CarriedObject>* report) const {
+  return CarryThrough(instances, {&motions}, size, report);
+}
+
+std::vector<Instance> ObjectMaskCarrier::CarryThrough(
+    const std::vector<Instance>& instances,
+    const std::vector<const std::vector<PointMotion>*>& steps, const cv::Size& size,
+    std::vector<CarriedObject>* report) const {
   if (report != nullptr) report->assign(instances.size(), CarriedObject());
   std::vector<Instance> carried;
   carried.reserve(instances.size());
@@ -82,42 +133,29 @@ std::vector<Instance> ObjectMaskCarrier::Carry(const std::vector<Instance>& inst
     Instance source = instance;
     // Boxes from the network are tight but may be missing (hand-built instances).
     if (source.box.empty()) source.box = cv::boundingRect(source.mask);
-    std::vector<cv::Point2f> from;
-    std::vector<cv::Point2f> to;
-    for (const PointMotion& m : motions) {
-      if (!Inside(source, m.from)) continue;
-      from.push_back(m.from);
-      to.push_back(m.to);
-    }
+    if (source.box.empty()) continue;
+    // The steps' motions composed: source frame -> the latest frame so far.
     CarriedObject object;
-    object.support = static_cast<int>(from.size());
-    if (object.support < options_.min_support || source.box.empty()) {
-      if (report != nullptr) (*report)[k] = object;
-      continue;
-    }
-    if (object.support >= options_.min_fit) {
-      std::vector<uchar> inliers;
-      const cv::Mat fitted = cv::estimateAffinePartial2D(from, to, inliers, cv::RANSAC,
-                                                         options_.ransac_threshold, 200, 0.99, 10);
-      const int inlier_count = fitted.empty() ? 0 : cv::countNonZero(inliers);
-      if (inlier_count >= options_.min_inlier_share * object.support) {
-        object.motion = cv::Matx23d(fitted);
-        object.fitted = true;
-        object.inliers = inlier_count;
+    bool expired = false;
+    for (const std::vector<PointMotion>* motions : steps) {
+      const CarriedObject step = FitStep(source, object.motion, *motions);
+      if (step.support < options_.min_support) {
+        object.support = step.support;
+        expired = true;
+        break;
       }
-    }
-    if (!object.fitted) {
-      std::vector<float> dx(from.size());
-      std::vector<float> dy(from.size());
-      for (std::size_t i = 0; i < from.size(); ++i) {
-        dx[i] = to[i].x - from[i].x;
-        dy[i] = to[i].y - from[i].y;
-      }
-      object.motion(0, 2) = Median(std::move(dx));
-      object.motion(1, 2) = Median(std::move(dy));
-      object.inliers = object.support;
+      const cv::Matx23d& m = step.motion;
+      const cv::Matx23d& a = object.motion;
+      object.motion = cv::Matx23d(
+          m(0, 0) * a(0, 0) + m(0, 1) * a(1, 0), m(0, 0) * a(0, 1) + m(0, 1) * a(1, 1),
+          m(0, 0) * a(0, 2) + m(0, 1) * a(1, 2) + m(0, 2), m(1, 0) * a(0, 0) + m(1, 1) * a(1, 0),
+          m(1, 0) * a(0, 1) + m(1, 1) * a(1, 1), m(1, 0) * a(0, 2) + m(1, 1) * a(1, 2) + m(1, 2));
+      object.support = step.support;
+      object.inliers = step.inliers;
+      object.fitted = step.fitted;
     }
     if (report != nullptr) (*report)[k] = object;
+    if (expired) continue;
 
     // Warp only the neighbourhood the box moves to: dst(p) = src(M^-1 p) with p offset by the
     // region's corner.

@@ -1,15 +1,17 @@
 // ObjectMaskCarrier: carries instance masks from one frame to the next at object level, for
-// sensor-rate tracking when segmentation lags (Segmentation.propagation = objects). It takes
-// point correspondences between the two frames (the flow tracks the dynamic front end already
-// computed for its motion-consistency test), not images: each mask moves by a similarity
-// fitted (RANSAC) to the correspondences that start inside it, or by their median translation
-// when there are too few for a fit. Only the mask's neighbourhood is warped, so the cost is a
-// few small fits and warps per frame, whatever the image size. It lives in semantic/ and knows
-// no flow: the caller brings the correspondences, so carrying k-1 -> k costs the same whatever
-// the masks' age (lagging masks are carried frame by frame through stored correspondences).
-// An instance keeps every field (class, score, track ID, source ID); its box is re-derived from
-// the moved mask. It is dropped (expires) when fewer than `min_support` correspondences start
-// inside it (nothing tells where it went) or its moved mask is smaller than `min_area`.
+// sensor-rate tracking when segmentation lags (Segmentation.propagation = objects). It lives in
+// semantic/ and knows no images or flow: the caller brings point correspondences between
+// consecutive frames (the dynamic front end passes the Lucas-Kanade tracks its motion-
+// consistency test computes anyway). Each mask moves by a similarity fitted (RANSAC) to the
+// correspondences that start on it, or by their median translation when there are fewer than
+// `min_fit` or the fit explains less than `min_inlier_share` of them (a walking person's limbs
+// and body move apart). Only the neighbourhood the mask moves to is warped, so carrying k-1 -> k
+// costs a few small fits and warps per frame whatever the image size and the masks' age; masks
+// that finish several frames late go through the stored correspondences of each frame since
+// theirs (CarryThrough: one fit per frame, one warp). An instance keeps every field (class,
+// score, track ID, source ID); its box is re-derived from the moved mask. It expires when
+// fewer than `min_support` correspondences start on it (nothing tells where it went) or its
+// moved mask is smaller than `min_area` (it left the image).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -56,9 +58,24 @@ class ObjectMaskCarrier {
                               const std::vector<PointMotion>& motions, const cv::Size& size,
                               std::vector<CarriedObject>* report = nullptr) const;
 
+  // The same through several frames at once: `steps[i]` moves points from frame i to frame
+  // i + 1. Each step's motion is fitted to the correspondences on the mask carried so far (a
+  // point maps back onto the source mask), the motions are composed, and each mask is warped
+  // once, so a lag of L frames costs L small fits and one warp. An instance expires at the first
+  // step without support; `report` then gives that step's support, else the last step's, with
+  // the composed motion.
+  std::vector<Instance> CarryThrough(const std::vector<Instance>& instances,
+                                     const std::vector<const std::vector<PointMotion>*>& steps,
+                                     const cv::Size& size,
+                                     std::vector<CarriedObject>* report = nullptr) const;
+
   const ObjectMaskCarrierOptions& Options() const { return options_; }
 
  private:
+  // One step's motion for `source` already carried by `carried`.
+  CarriedObject FitStep(const Instance& source, const cv::Matx23d& carried,
+                        const std::vector<PointMotion>& motions) const;
+
   ObjectMaskCarrierOptions options_;
 };
 
