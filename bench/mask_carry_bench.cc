@@ -144,6 +144,25 @@ void BM_CarryObjects(benchmark::State& state) {
 }
 BENCHMARK(BM_CarryObjects)->Unit(benchmark::kMillisecond);
 
+// Masks that finish `lag` frames late: frame k's true masks through the stored tracks of the
+// `lag` frames since (what the tracking thread does on a frame where new masks arrive).
+void BM_CarryObjectsLate(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const Data& d = Sequence();
+  const ObjectMaskCarrier carrier;
+  const cv::Size size = d.bgrs.front().size();
+  const std::size_t lag = static_cast<std::size_t>(state.range(0));
+  std::size_t k = 0;
+  for (auto _ : state) {
+    std::vector<const std::vector<PointMotion>*> steps;
+    for (std::size_t step = 1; step <= lag; ++step) steps.push_back(&d.tracks[k + step]);
+    const std::vector<Instance> moved = carrier.CarryThrough(d.truth[k].instances, steps, size);
+    benchmark::DoNotOptimize(moved.data());
+    k = (k + 1) % (d.bgrs.size() - lag);
+  }
+}
+BENCHMARK(BM_CarryObjectsLate)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
+
 // For scale only: the front end's own LK tracking of a frame's features (motion consistency
 // pays it whether or not masks are carried).
 void BM_FrameTracks(benchmark::State& state) {
