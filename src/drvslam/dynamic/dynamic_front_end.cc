@@ -54,11 +54,11 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
     async_ = std::make_unique<AsyncSegmenter>(config_.segmenter, async);
     carry_objects_ =
         config_.realtime && config_.segmentation.propagation == MaskPropagation::kObjects;
+    // Object carrying bypasses MaskPropagator (MaskSource only hands the masks out then).
     MaskPropagatorOptions propagation;
-    propagation.method =
-        carry_objects_ || config_.segmentation.propagation == MaskPropagation::kObjects
-            ? MaskPropagation::kNone
-            : config_.segmentation.propagation;
+    propagation.method = config_.segmentation.propagation == MaskPropagation::kObjects
+                             ? MaskPropagation::kNone
+                             : config_.segmentation.propagation;
     masks_ = std::make_unique<MaskSource>(*async_, MaskPropagator(propagation), config_.realtime);
     ObjectMaskCarrierOptions carrying;
     carrying.min_support = config_.segmentation.carry_min_support;
