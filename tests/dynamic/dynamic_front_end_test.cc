@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
@@ -48,6 +50,29 @@ class ScriptedSegmenter : public Segmenter {
   std::vector<Segmentation> frames_;
   int sleep_ms_;
   std::vector<std::string> names_;
+};
+
+// ScriptedSegmenter whose calls after the first block until Open(): segmentation that lags.
+class GatedSegmenter : public ScriptedSegmenter {
+ public:
+  using ScriptedSegmenter::ScriptedSegmenter;
+  Segmentation Segment(const cv::Mat& bgr, double timestamp, std::size_t index) override {
+    if (index > 0) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      opened_.wait(lock, [&] { return open_; });
+    }
+    return ScriptedSegmenter::Segment(bgr, timestamp, index);
+  }
+  void Open() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    open_ = true;
+    opened_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable opened_;
+  bool open_ = false;
 };
 
 struct Sequence {
@@ -337,6 +362,85 @@ TEST_F(DynamicFrontEndTest, RealtimeKeyFrameWaitIsBounded) {
   const TimingSummary wait = timings.Summaries().at("segmentation_wait");
   EXPECT_GE(wait.max_ms, 19.0);
   EXPECT_LT(wait.max_ms, 400.0);  // generous: far below the network's 600 ms
+}
+
+TEST_F(DynamicFrontEndTest, RealtimeCarriesLaggingMasksOntoAWalkingPersonByItsTracks) {
+  // Frame 0 is segmented; the network then stalls, so frames 1..6 get frame 0's masks carried
+  // along the flow tracks (Segmentation.propagation objects, the default).
+  const int frames = 7;
+  const Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
+  auto segmenter = std::make_shared<GatedSegmenter>(sequence.masks);
+  DynamicFrontEndConfig config;
+  config.segmenter = segmenter;
+  config.realtime = true;
+  ASSERT_EQ(config.segmentation.propagation, MaskPropagation::kObjects);
+  StageTimings timings;
+  DynamicFrontEnd stage(config, 1000, map_, &timings);
+  int first_id = -1;
+  for (int f = 0; f < frames; ++f) {
+    stage.BeginFrame(0.033 * f, sequence.bgr[f]);
+    if (f == 0) {
+      // A generous hang bound: frame 0's masks come at once.
+      for (int wait = 0; wait < 2000 && stage.Stats().segmentation->segmented < 1; ++wait) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    }
+    stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+    const DynamicFrameReport& report = stage.LastReport();
+    ASSERT_EQ(report.instances.size(), 1u) << "frame " << f;
+    const cv::Mat& truth = sequence.masks[f].instances[0].mask;
+    EXPECT_GE(MaskIoU(report.instances[0].mask, truth), 0.9) << "frame " << f;
+    if (f == 0) first_id = report.instances[0].track_id;
+    EXPECT_EQ(report.instances[0].track_id, first_id) << "frame " << f;
+    EXPECT_TRUE(report.objects[0].moving || f == 0) << "frame " << f;
+  }
+  // Left where it was, frame 0's mask would have slid off the person.
+  EXPECT_LT(
+      MaskIoU(sequence.masks[0].instances[0].mask, sequence.masks[frames - 1].instances[0].mask),
+      0.7);
+  const DynamicStats stats = stage.Stats();
+  ASSERT_TRUE(stats.latency.has_value());
+  EXPECT_EQ(stats.latency->fresh, 1u);
+  EXPECT_EQ(stats.latency->propagated, static_cast<std::size_t>(frames - 1));
+  EXPECT_EQ(stats.latency->lag_frames.max, frames - 1.0);
+  EXPECT_EQ(timings.Summaries().at("segmentation_wait").count, static_cast<std::size_t>(frames));
+  segmenter->Open();
+}
+
+TEST_F(DynamicFrontEndTest, AWalkingPersonKeepsItsIdThroughAThreeFrameDetectionGap) {
+  // The network misses the walking person on frames 3, 4 and 5.
+  const int frames = 9;
+  Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
+  for (int f = 3; f <= 5; ++f) sequence.masks[f].instances.clear();
+  for (const int memory : {5, 0}) {
+    SCOPED_TRACE("Dynamic.objectMemoryFrames " + std::to_string(memory));
+    DynamicFrontEndConfig config;
+    config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks);
+    config.sequential = true;
+    config.options.object_memory_frames = memory;
+    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    std::vector<int> ids(frames, -1);
+    std::vector<bool> moving(frames, false);
+    for (int f = 0; f < frames; ++f) {
+      stage.BeginFrame(0.033 * f, sequence.bgr[f]);
+      stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+      const DynamicFrameReport& report = stage.LastReport();
+      ASSERT_EQ(report.instances.size(), f >= 3 && f <= 5 ? 0u : 1u) << "frame " << f;
+      if (report.instances.empty()) continue;
+      ids[f] = report.instances[0].track_id;
+      moving[f] = report.objects[0].moving;
+    }
+    EXPECT_TRUE(moving[2]);
+    EXPECT_TRUE(moving[6]);
+    if (memory > 0) {
+      EXPECT_EQ(ids[6], ids[2]);
+      EXPECT_EQ(stage.Stats().ids_issued, 1u);
+    } else {
+      EXPECT_NE(ids[6], ids[2]);
+      EXPECT_EQ(stage.Stats().ids_issued, 2u);
+    }
+    EXPECT_EQ(ids[8], ids[6]);
+  }
 }
 
 TEST_F(DynamicFrontEndTest, CallOrderIsChecked) {

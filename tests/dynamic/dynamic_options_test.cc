@@ -37,6 +37,9 @@ TEST(DynamicOptionsTest, BadValuesNameTheirKey) {
   ExpectKeyError([](DynamicOptions& o) { o.min_model_pairs = 7; }, "Dynamic.minModelPairs");
   ExpectKeyError([](DynamicOptions& o) { o.min_parallax_share = 1.5; }, "Dynamic.minParallaxShare");
   ExpectKeyError([](DynamicOptions& o) { o.min_id_matches = 0; }, "Dynamic.minIdMatches");
+  ExpectKeyError([](DynamicOptions& o) { o.object_memory_frames = -1; },
+                 "Dynamic.objectMemoryFrames");
+  ExpectKeyError([](DynamicOptions& o) { o.object_memory_iou = 0.0; }, "Dynamic.objectMemoryIou");
   ExpectKeyError([](DynamicOptions& o) { o.box_margin = -0.1; }, "Dynamic.boxMargin");
   ExpectKeyError([](DynamicOptions& o) { o.delta_static = 1.2; }, "Dynamic.deltaStatic");
   ExpectKeyError(
@@ -83,13 +86,16 @@ class DynamicOptionsFileTest : public ::testing::Test {
 TEST_F(DynamicOptionsFileTest, ReadsValues) {
   const std::string path = Write(
       "Dynamic.epipolarThreshold: 2.5\nDynamic.largeShare: 0.4\nDynamic.motionRule: delta\n"
-      "Dynamic.unlabelledMotion: 0\nDynamic.flowWindow: 15\n");
+      "Dynamic.unlabelledMotion: 0\nDynamic.flowWindow: 15\nDynamic.objectMemoryFrames: 2\n"
+      "Dynamic.objectMemoryIou: 0.5\n");
   const DynamicOptions options = LoadDynamicOptions(SettingsFile(path));
   EXPECT_EQ(options.epipolar_threshold, 2.5);
   EXPECT_EQ(options.large_share, 0.4);
   EXPECT_EQ(options.rule, MotionRule::kDelta);
   EXPECT_FALSE(options.unlabelled_motion);
   EXPECT_EQ(options.flow_window, 15);
+  EXPECT_EQ(options.object_memory_frames, 2);
+  EXPECT_EQ(options.object_memory_iou, 0.5);
   EXPECT_EQ(options.delta_static, DynamicOptions().delta_static);
 }
 

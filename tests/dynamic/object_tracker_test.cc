@@ -138,5 +138,99 @@ TEST(ObjectIdTrackerTest, ASplitPassesTheIdToTheLargerPart) {
 
 TEST(ObjectIdTrackerTest, RejectsAZeroThreshold) { EXPECT_THROW(ObjectIdTracker(0), Error); }
 
+// An object walks right 4 px a frame; the detector misses it on frames [gap_start, gap_end).
+// Returns its track ID on every frame it was detected.
+std::vector<int> IdsThroughAGap(ObjectIdTracker& tracker, int frames, int gap_start, int gap_end,
+                                std::vector<int>* remembered = nullptr) {
+  const cv::Size size(400, 100);
+  std::vector<int> ids;
+  std::vector<Instance> previous;
+  for (int f = 0; f < frames; ++f) {
+    const cv::Rect now(20 + 4 * f, 20, 40, 50);
+    const cv::Rect before(20 + 4 * (f - 1), 20, 40, 50);
+    // The tracks exist whether or not the detector saw the object: its features are tracked.
+    const std::vector<FlowTrack> tracks =
+        f > 0 ? Shifted(before, {4, 0}, 20) : std::vector<FlowTrack>();
+    std::vector<Instance> current;
+    if (f < gap_start || f >= gap_end) current.push_back(Box(0, now, size));
+    const IdAssignment assignment = tracker.Assign(previous, current, tracks);
+    for (std::size_t a = 0; a < current.size(); ++a) {
+      ids.push_back(current[a].track_id);
+      if (remembered != nullptr) remembered->push_back(assignment.remembered[a]);
+    }
+    previous = current;
+  }
+  return ids;
+}
+
+TEST(ObjectIdTrackerTest, KeepsItsIdThroughAThreeFrameDetectionGap) {
+  ObjectIdTracker tracker(5, /*memory_frames=*/5);
+  std::vector<int> remembered;
+  const std::vector<int> ids = IdsThroughAGap(tracker, 10, 3, 6, &remembered);
+  ASSERT_EQ(ids.size(), 7u);
+  for (const int id : ids) EXPECT_EQ(id, ids.front());
+  EXPECT_EQ(remembered[3], 3) << "frame 6 came back after 3 frames absent";
+  EXPECT_EQ(tracker.IssuedIds(), 1);
+  EXPECT_EQ(tracker.Remembered(), 0u);
+
+  // Without memory the same sequence gives the object a new ID after the gap.
+  ObjectIdTracker forgetful(5, 0);
+  const std::vector<int> forgotten = IdsThroughAGap(forgetful, 10, 3, 6);
+  EXPECT_NE(forgotten[3], forgotten[0]);
+}
+
+TEST(ObjectIdTrackerTest, AnObjectAbsentLongerThanTheMemoryExpires) {
+  ObjectIdTracker tracker(5, /*memory_frames=*/3);
+  // Absent 4 frames (3..6) with a 3-frame memory: a new ID.
+  const std::vector<int> ids = IdsThroughAGap(tracker, 10, 3, 7);
+  ASSERT_EQ(ids.size(), 6u);
+  EXPECT_EQ(ids[2], ids[0]);
+  EXPECT_NE(ids[3], ids[0]);
+  EXPECT_EQ(tracker.IssuedIds(), 2);
+  // Exactly as long as the memory: kept.
+  ObjectIdTracker just(5, 3);
+  const std::vector<int> kept = IdsThroughAGap(just, 10, 3, 6);
+  EXPECT_EQ(kept[3], kept[0]);
+}
+
+TEST(ObjectIdTrackerTest, ARememberedObjectWithoutTracksIsForgotten) {
+  // The object vanished for real (occluded, left): no tracks carry its mask, so an object
+  // appearing where it was is someone new.
+  ObjectIdTracker tracker(5, 5);
+  const cv::Size size(400, 100);
+  std::vector<Instance> previous = {Box(0, {20, 20, 40, 50}, size)};
+  std::vector<Instance> none;
+  tracker.Assign(none, previous, {});
+  tracker.Assign(previous, none, {});
+  EXPECT_EQ(tracker.Remembered(), 0u);
+  std::vector<Instance> again = {Box(0, {20, 20, 40, 50}, size)};
+  tracker.Assign(none, again, {});
+  EXPECT_NE(again[0].track_id, previous[0].track_id);
+}
+
+TEST(ObjectIdTrackerTest, CarriedInstancesKeepTheirIdsWithoutSharedTracks) {
+  ObjectIdTracker tracker(5);
+  std::vector<Instance> previous = {Box(0, {10, 10, 30, 30}), Box(0, {100, 10, 30, 30})};
+  std::vector<Instance> none;
+  tracker.Assign(none, previous, {});
+  // Carried masks come with their IDs; two tracks are below Dynamic.minIdMatches.
+  std::vector<Instance> current = {Box(0, {102, 10, 30, 30}), Box(0, {12, 10, 30, 30})};
+  current[0].track_id = previous[1].track_id;
+  current[1].track_id = previous[0].track_id;
+  const IdAssignment assignment =
+      tracker.Assign(previous, current, Shifted({10, 10, 30, 30}, {2, 0}, 2));
+  EXPECT_EQ(current[0].track_id, 1);
+  EXPECT_EQ(current[1].track_id, 0);
+  EXPECT_EQ(assignment.predecessor[0], 1);
+  EXPECT_EQ(assignment.predecessor[1], 0);
+  EXPECT_EQ(tracker.IssuedIds(), 2);
+}
+
+TEST(ObjectIdTrackerTest, RejectsBadMemorySettings) {
+  EXPECT_THROW(ObjectIdTracker(5, -1), Error);
+  EXPECT_THROW(ObjectIdTracker(5, 3, 0.0), Error);
+  EXPECT_THROW(ObjectIdTracker(5, 3, 1.5), Error);
+}
+
 }  // namespace
 }  // namespace drvslam

@@ -49,6 +49,7 @@ TEST_F(SegmentationOptionsTest, DefaultsPassAndAbsentKeysKeepThem) {
   EXPECT_DOUBLE_EQ(loaded.score_threshold, 0.25);
   EXPECT_EQ(loaded.moving_classes.size(), 12u);
   EXPECT_EQ(loaded.key_objects.size(), 9u);
+  EXPECT_EQ(loaded.propagation, MaskPropagation::kObjects);
 }
 
 TEST_F(SegmentationOptionsTest, ReadsEveryKey) {
@@ -67,6 +68,8 @@ TEST_F(SegmentationOptionsTest, ReadsEveryKey) {
                                                  "Segmentation.maskNaming: index\n"
                                                  "Segmentation.maskClass: dog\n"
                                                  "Segmentation.propagation: sparse\n"
+                                                 "Segmentation.carryFrames: 4\n"
+                                                 "Segmentation.carryMinSupport: 5\n"
                                                  "Segmentation.movingClasses: \"person, dog\"\n"
                                                  "Segmentation.keyObjects: [cup]\n")));
   EXPECT_EQ(o.backend, SegmenterBackend::kYolo);
@@ -83,6 +86,8 @@ TEST_F(SegmentationOptionsTest, ReadsEveryKey) {
   EXPECT_EQ(o.mask_naming, MaskNaming::kIndex);
   EXPECT_EQ(o.mask_class, "dog");
   EXPECT_EQ(o.propagation, MaskPropagation::kSparseFlow);
+  EXPECT_EQ(o.carry_frames, 4);
+  EXPECT_EQ(o.carry_min_support, 5);
   EXPECT_EQ(o.moving_classes, (std::vector<std::string>{"person", "dog"}));
   EXPECT_EQ(o.key_objects, (std::vector<std::string>{"cup"}));
 }
@@ -101,6 +106,8 @@ TEST_F(SegmentationOptionsTest, BadValuesNameTheirKey) {
   ExpectError("Segmentation.maskNaming: alphabetical\n", "Segmentation.maskNaming");
   ExpectError("Segmentation.maskClass: unicorn\n", "Segmentation.maskClass");
   ExpectError("Segmentation.propagation: magic\n", "Segmentation.propagation");
+  ExpectError("Segmentation.carryFrames: 0\n", "Segmentation.carryFrames");
+  ExpectError("Segmentation.carryMinSupport: 0\n", "Segmentation.carryMinSupport");
   ExpectError("Segmentation.scoreThreshold: high\n", "Segmentation.scoreThreshold");
 }
 

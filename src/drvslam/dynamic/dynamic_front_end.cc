@@ -21,6 +21,16 @@ bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
   return mask.at<uint8_t>(y, x) != 0;
 }
 
+void CheckMasks(const std::vector<Instance>& instances, const cv::Size& size,
+                std::size_t frame_index) {
+  for (const Instance& instance : instances) {
+    if (instance.mask.size() != size || instance.mask.type() != CV_8UC1) {
+      throw Error("segmentation of frame " + std::to_string(frame_index) +
+                  ": an instance mask is not CV_8UC1 of the image's size");
+    }
+  }
+}
+
 }  // namespace
 
 DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features, Map& map,
@@ -30,7 +40,8 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
       map_(map),
       timings_(timings),
       consistency_(config_.options),
-      ids_(config_.options.min_id_matches),
+      ids_(config_.options.min_id_matches, config_.options.object_memory_frames,
+           config_.options.object_memory_iou),
       classifier_(config_.options) {
   config_.options.Check();
   if (config_.sequential) config_.realtime = false;
@@ -41,9 +52,17 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
     async.sequential = config_.sequential;
     async.drop_when_busy = config_.realtime;
     async_ = std::make_unique<AsyncSegmenter>(config_.segmenter, async);
+    carry_objects_ =
+        config_.realtime && config_.segmentation.propagation == MaskPropagation::kObjects;
+    // Object carrying bypasses MaskPropagator (MaskSource only hands the masks out then).
     MaskPropagatorOptions propagation;
-    propagation.method = config_.segmentation.propagation;
+    propagation.method = config_.segmentation.propagation == MaskPropagation::kObjects
+                             ? MaskPropagation::kNone
+                             : config_.segmentation.propagation;
     masks_ = std::make_unique<MaskSource>(*async_, MaskPropagator(propagation), config_.realtime);
+    ObjectMaskCarrierOptions carrying;
+    carrying.min_support = config_.segmentation.carry_min_support;
+    carrier_ = ObjectMaskCarrier(carrying);
     stats_.segmenter = config_.segmenter->Name();
   } else {
     stats_.segmenter = "none";
@@ -138,14 +157,7 @@ Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
     if (!config_.realtime) {
       report_.own_masks = true;
     } else {
-      // Keyframe priority: a likely keyframe waits a bounded time for its own masks, when the
-      // network is on its image or about to be (else another forward pass is ahead: no use).
-      const double wait_ms = config_.segmentation.keyframe_wait_ms;
-      if (report_.keyframe_likely && wait_ms > 0.0 && async_->TakenOrNext(next_index_)) {
-        ++stats_.keyframe_waits;
-        if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
-      }
-      report_.own_masks = async_->TryGet(next_index_) != nullptr;
+      AwaitKeyFrameMasks();
     }
     segmentation = masks_->MasksFor(next_index_, timestamp, bgr);
     Record("segmentation_wait", wait.ElapsedMs());
@@ -153,13 +165,77 @@ Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
     // sequential), when these are the frame's own masks.
     if (const auto own = async_->TryGet(next_index_)) Record("segmentation", own->segment_ms);
   }
-  for (const Instance& instance : segmentation.instances) {
-    if (instance.mask.size() != bgr.size() || instance.mask.type() != CV_8UC1) {
-      throw Error("segmentation of frame " + std::to_string(next_index_) +
-                  ": an instance mask is not CV_8UC1 of the image's size");
-    }
-  }
+  CheckMasks(segmentation.instances, bgr.size(), next_index_);
   return segmentation;
+}
+
+void DynamicFrontEnd::AwaitKeyFrameMasks() {
+  // Only when the network is on this image or about to be: else another forward pass is ahead
+  // and waiting would not bring this frame's masks.
+  const double wait_ms = config_.segmentation.keyframe_wait_ms;
+  if (report_.keyframe_likely && wait_ms > 0.0 && async_->TakenOrNext(next_index_)) {
+    ++stats_.keyframe_waits;
+    if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
+  }
+  report_.own_masks = async_->TryGet(next_index_) != nullptr;
+}
+
+Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& size,
+                                              const std::vector<FlowTrack>& tracks) {
+  const Stopwatch watch;
+  std::vector<PointMotion> motions;
+  motions.reserve(tracks.size());
+  for (const FlowTrack& track : tracks) motions.push_back({track.prev, track.cur});
+  track_history_.push_back(std::move(motions));
+  while (track_history_.size() > static_cast<std::size_t>(config_.segmentation.carry_frames)) {
+    track_history_.pop_front();
+  }
+  AwaitKeyFrameMasks();
+  Segmentation out;
+  out.timestamp = timestamp;
+  out.frame_index = next_index_;
+  out.image_size = size;
+  const MaskSource::Newest newest = masks_->NewestFor(next_index_, size);
+  if (newest.masks) CheckMasks(newest.masks->segmentation.instances, size, next_index_);
+  if (newest.own) {
+    out.instances = newest.masks->segmentation.instances;
+    carried_from_ = next_index_;
+    carried_from_timestamp_ = timestamp;
+    masks_->RecordFresh();
+    Record("segmentation_wait", watch.ElapsedMs());
+    Record("segmentation", newest.masks->segment_ms);
+    return out;
+  }
+  if (newest.masks) {
+    const Segmentation& found = newest.masks->segmentation;
+    const std::size_t lag = next_index_ - found.frame_index;
+    if ((!carried_from_ || found.frame_index > *carried_from_) && lag <= track_history_.size()) {
+      // Newer masks than the carried ones: through each frame's tracks since theirs.
+      std::vector<const std::vector<PointMotion>*> steps;
+      for (std::size_t step = track_history_.size() - lag; step < track_history_.size(); ++step) {
+        steps.push_back(&track_history_[step]);
+      }
+      out.instances = carrier_.CarryThrough(found.instances, steps, size);
+      carried_from_ = found.frame_index;
+      carried_from_timestamp_ = found.timestamp;
+    } else if (carried_from_ && previous_) {
+      out.instances = carrier_.Carry(previous_->instances, track_history_.back(), size);
+    }
+  } else if (carried_from_ && previous_) {
+    out.instances = carrier_.Carry(previous_->instances, track_history_.back(), size);
+  }
+  if (!carried_from_) {
+    masks_->RecordWithoutMasks();
+    Record("segmentation_wait", watch.ElapsedMs());
+    return out;
+  }
+  const std::size_t age = next_index_ - *carried_from_;
+  // Not re-detected for too long: the objects expire (the ID tracker may still remember them).
+  if (age > static_cast<std::size_t>(config_.segmentation.carry_frames)) out.instances.clear();
+  const double carry_ms = watch.ElapsedMs();
+  masks_->RecordCarried(age, (timestamp - carried_from_timestamp_) * 1000.0, carry_ms);
+  Record("segmentation_wait", carry_ms);
+  return out;
 }
 
 Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth) {
@@ -167,15 +243,12 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   begun_ = false;
   const DynamicOptions& o = config_.options;
   const cv::Size size = bgr.size();
-  Segmentation segmentation = MasksFor(frame.Timestamp(), bgr);
-  std::vector<Instance> instances = std::move(segmentation.instances);
-  std::vector<bool> potentially_moving(instances.size(), false);
-  for (std::size_t k = 0; k < instances.size(); ++k) {
-    potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
-  }
+  Segmentation segmentation;
+  if (!carry_objects_) segmentation = MasksFor(frame.Timestamp(), bgr);
 
-  // Step 1: motion consistency of the previous frame's features.
-  const Stopwatch consistency_watch;
+  // Step 1: motion consistency of the previous frame's features: the flow tracks first (masks
+  // carried by object need them), the tests once the masks are known.
+  Stopwatch consistency_watch;
   cv::Mat gray;
   if (bgr.type() == CV_8UC3) {
     cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
@@ -183,11 +256,9 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
     gray = bgr;
   }
   FlowImage flow = BuildFlowImage(gray, o);
-  RemovalPlan all_moving;
-  all_moving.remove = potentially_moving;
-  const cv::Mat exclusion = RemovalMask(instances, all_moving, size, o);
-  MotionConsistencyResult motion;
-  if (previous_ && previous_->flow.size == size) {
+  const bool has_previous = previous_ && previous_->flow.size == size;
+  std::vector<FlowTrack> tracks;
+  if (has_previous) {
     // Objects need every track they can get (IDs, motion states); the background only enough
     // for a well-determined model, so it is thinned out evenly.
     const std::vector<cv::KeyPoint>& keypoints = previous_->features->Keypoints();
@@ -211,10 +282,26 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
       points.push_back(keypoints[background[k]].pt);
       ids.push_back(background[k]);
     }
-    motion = consistency_.Run(previous_->flow, flow, points, ids, previous_->exclusion, exclusion,
-                              previous_->depth, &frame.Geometry().camera);
+    tracks = consistency_.Track(previous_->flow, flow, points, ids);
   }
-  Record("motion_consistency", consistency_watch.ElapsedMs());
+  double consistency_ms = consistency_watch.ElapsedMs();
+  if (carry_objects_) segmentation = CarriedMasksFor(frame.Timestamp(), size, tracks);
+  std::vector<Instance> instances = std::move(segmentation.instances);
+  std::vector<bool> potentially_moving(instances.size(), false);
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
+  }
+  const Stopwatch test_watch;
+  RemovalPlan all_moving;
+  all_moving.remove = potentially_moving;
+  const cv::Mat exclusion = RemovalMask(instances, all_moving, size, o);
+  MotionConsistencyResult motion;
+  if (has_previous) {
+    motion = consistency_.Test(std::move(tracks), size, previous_->exclusion, exclusion,
+                               previous_->depth, &frame.Geometry().camera);
+  }
+  consistency_ms += test_watch.ElapsedMs();
+  Record("motion_consistency", consistency_ms);
 
   const Stopwatch removal_watch;
   // Step 2: object IDs.

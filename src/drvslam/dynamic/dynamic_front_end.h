@@ -5,7 +5,11 @@
 //   MovingSkipMask (before extraction): where the objects believed moving are, so the extractor
 //     spends its feature budget on the background (Dynamic.skipMovingExtraction).
 //   Filter (after extraction): takes this frame's masks (waiting for them; with --realtime the
-//     newest ones, carried to this image by optical flow), runs motion consistency, object IDs,
+//     newest ones, carried to this image: by default object by object along the frame-to-frame
+//     flow tracks that motion consistency computes anyway (ObjectMaskCarrier, masks k-1 -> k
+//     with the k-1 -> k tracks, so the cost is per frame, not per frame of lag); with
+//     Segmentation.propagation dense/sparse by MaskPropagator's own optical flow), runs motion
+//     consistency, object IDs,
 //     motion states, map-point culling and adaptive removal, and returns the frame with the
 //     static features only.
 //   AfterTracking: files the map points matched on still objects, so they can be culled when
@@ -15,16 +19,19 @@
 // tracking expects to become a keyframe (Tracker::KeyFrameLikely, told to BeginFrame) and whose
 // image the network is on (or about to be: no other frame ahead of it) waits at most
 // Segmentation.keyframeWaitMs for its own masks; other frames never wait. Chosen over segmenting
-// keyframes after their creation because a keyframe's features become map points at creation: masks
-// that arrive later could only remove them again, while a short wait keeps moving features out of
-// the map in the first place, at a bounded cost to the frame. Stage timings recorded (ms per
-// frame): segmentation (the network's time for the frame), segmentation_wait (how long tracking
-// waited for masks, keyframe waits included), motion_consistency (flow, scene model, reprojection
-// test), removal (IDs, motion states, culling, removal, filtering). Works without a segmenter too
-// (geometry only: moving points grouped into regions). Used by the tracking thread only; in
-// sequential mode segmentation runs inline and the output is bit-identical from run to run.
+// keyframes after their creation because a keyframe's features become map points at creation:
+// masks that arrive later could only remove them again, while a short wait keeps moving features
+// out of the map in the first place, at a bounded cost to the frame. Older masks are carried to
+// the frame object by object along the flow tracks (Segmentation.propagation objects). Stage
+// timings recorded (ms per frame): segmentation (the network's time for the frame),
+// segmentation_wait (how long tracking waited for masks, keyframe waits included, or carried
+// them), motion_consistency (flow, scene model, reprojection test), removal (IDs, motion states,
+// culling, removal, filtering). Works without a segmenter too (geometry only: moving points
+// grouped into regions). Used by the tracking thread only; in sequential mode segmentation runs
+// inline and the output is bit-identical from run to run.
 #pragma once
 
+#include <deque>
 #include <fstream>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -45,6 +52,7 @@
 #include "drvslam/semantic/async_segmenter.h"
 #include "drvslam/semantic/class_table.h"
 #include "drvslam/semantic/mask_source.h"
+#include "drvslam/semantic/object_mask_carrier.h"
 #include "drvslam/semantic/segmentation_options.h"
 #include "drvslam/semantic/segmenter.h"
 
@@ -155,6 +163,14 @@ class DynamicFrontEnd {
   };
 
   Segmentation MasksFor(double timestamp, const cv::Mat& bgr);
+  // Realtime keyframe priority: a likely keyframe waits up to Segmentation.keyframeWaitMs for
+  // its own masks when the network is on its image or next to be; notes whether it has them.
+  void AwaitKeyFrameMasks();
+  // Realtime, objects propagation: this frame's own masks when finished, else masks carried
+  // along `tracks` (previous frame -> this one): newer finished masks through the stored tracks
+  // of the frames since theirs, otherwise the previous frame's (carried) masks.
+  Segmentation CarriedMasksFor(double timestamp, const cv::Size& size,
+                               const std::vector<FlowTrack>& tracks);
   void Record(const char* stage, double ms);
   void WriteDebugPicture(const cv::Mat& bgr, const std::vector<cv::KeyPoint>& kept,
                          const std::vector<cv::KeyPoint>& removed) const;
@@ -167,6 +183,14 @@ class DynamicFrontEnd {
   std::unique_ptr<ClassTable> classes_;
   std::unique_ptr<AsyncSegmenter> async_;
   std::unique_ptr<MaskSource> masks_;
+  bool carry_objects_ = false;
+  ObjectMaskCarrier carrier_;
+  // Objects propagation: each recent frame's flow tracks from the frame before it (newest
+  // last, at most Segmentation.carryFrames), and the segmented frame the current carried masks
+  // came from.
+  std::deque<std::vector<PointMotion>> track_history_;
+  std::optional<std::size_t> carried_from_;
+  double carried_from_timestamp_ = 0.0;
   MotionConsistency consistency_;
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;

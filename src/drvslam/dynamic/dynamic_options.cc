@@ -50,6 +50,10 @@ void DynamicOptions::Check() const {
           "must be > 0");
   Require(Positive(depth_edge), "Dynamic.depthEdge", depth_edge, "must be > 0");
   Require(min_id_matches >= 1, "Dynamic.minIdMatches", min_id_matches, "must be at least 1");
+  Require(object_memory_frames >= 0 && object_memory_frames <= 1000, "Dynamic.objectMemoryFrames",
+          object_memory_frames, "must be in 0..1000");
+  Require(object_memory_iou > 0.0 && object_memory_iou <= 1.0, "Dynamic.objectMemoryIou",
+          object_memory_iou, "must be in (0, 1]");
   Require(Finite(box_margin) && box_margin >= 0.0 && box_margin <= 2.0, "Dynamic.boxMargin",
           box_margin, "must be in [0, 2]");
   Require(min_ring_features >= 1, "Dynamic.minRingFeatures", min_ring_features,
@@ -106,6 +110,8 @@ DynamicOptions LoadDynamicOptions(const SettingsFile& file) {
         file.GetDouble("Dynamic.reprojectionThreshold", o.reprojection_threshold);
     o.depth_edge = file.GetDouble("Dynamic.depthEdge", o.depth_edge);
     o.min_id_matches = file.GetInt("Dynamic.minIdMatches", o.min_id_matches);
+    o.object_memory_frames = file.GetInt("Dynamic.objectMemoryFrames", o.object_memory_frames);
+    o.object_memory_iou = file.GetDouble("Dynamic.objectMemoryIou", o.object_memory_iou);
     o.box_margin = file.GetDouble("Dynamic.boxMargin", o.box_margin);
     o.min_ring_features = file.GetInt("Dynamic.minRingFeatures", o.min_ring_features);
     o.match_radius = file.GetDouble("Dynamic.matchRadius", o.match_radius);

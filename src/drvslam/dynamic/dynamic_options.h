@@ -54,6 +54,14 @@ struct DynamicOptions {
 
   // Object identities.
   int min_id_matches = 5;  // Dynamic.minIdMatches: shared flow tracks to inherit an ID
+  // Dynamic.objectMemoryFrames: an object missing from the masks (a missed detection) is
+  // remembered this many frames, its mask carried by its flow tracks; when an instance of its
+  // class reappears over the carried mask it gets the old ID and motion state back. 0: no
+  // memory.
+  int object_memory_frames = 5;
+  // Dynamic.objectMemoryIou: mask overlap (intersection over union) with a remembered object's
+  // carried mask that makes a new instance that object.
+  double object_memory_iou = 0.3;
 
   // Motion states.
   double box_margin = 0.2;    // Dynamic.boxMargin: box growth on each side, share of its size

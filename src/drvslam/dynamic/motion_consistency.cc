@@ -85,19 +85,21 @@ MotionConsistencyResult MotionConsistency::Run(
     const FlowImage& prev, const FlowImage& cur, const std::vector<cv::Point2f>& prev_points,
     const std::vector<int>& ids, const cv::Mat& prev_exclusion, const cv::Mat& cur_exclusion,
     const cv::Mat& prev_depth, const PinholeCamera* camera) const {
+  return Test(Track(prev, cur, prev_points, ids), cur.size, prev_exclusion, cur_exclusion,
+              prev_depth, camera);
+}
+
+std::vector<FlowTrack> MotionConsistency::Track(const FlowImage& prev, const FlowImage& cur,
+                                                const std::vector<cv::Point2f>& prev_points,
+                                                const std::vector<int>& ids) const {
   if (prev.Empty() || cur.Empty() || prev.size != cur.size || prev.scale != cur.scale) {
     throw Error("MotionConsistency: the two flow images must exist and have one size and scale");
   }
   if (ids.size() != prev_points.size()) {
     throw Error("MotionConsistency: one id per point is needed");
   }
-  CheckMask(prev_exclusion, prev.size, "the previous exclusion mask");
-  CheckMask(cur_exclusion, cur.size, "the current exclusion mask");
-  if (!prev_depth.empty() && (prev_depth.type() != CV_32FC1 || prev_depth.size() != prev.size)) {
-    throw Error("MotionConsistency: the previous depth must be CV_32FC1 of the image size");
-  }
-  MotionConsistencyResult result;
-  if (prev_points.empty()) return result;
+  std::vector<FlowTrack> tracks;
+  if (prev_points.empty()) return tracks;
 
   const cv::Size window(options_.flow_window, options_.flow_window);
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.03);
@@ -120,9 +122,6 @@ MotionConsistencyResult MotionConsistency::Run(
   for (cv::Point2f& p : back) p *= 1.0f / scale;
 
   const cv::Rect inside(0, 0, cur.size.width, cur.size.height);
-  std::vector<cv::Point2f> model_prev;
-  std::vector<cv::Point2f> model_cur;
-  std::vector<double> flows;
   for (std::size_t i = 0; i < prev_points.size(); ++i) {
     if (!status[i] || !inside.contains(cv::Point(cvFloor(next[i].x), cvFloor(next[i].y)))) {
       continue;
@@ -136,15 +135,35 @@ MotionConsistencyResult MotionConsistency::Run(
     track.feature = ids[i];
     track.prev = prev_points[i];
     track.cur = next[i];
+    tracks.push_back(track);
+  }
+  return tracks;
+}
+
+MotionConsistencyResult MotionConsistency::Test(std::vector<FlowTrack> tracks, const cv::Size& size,
+                                                const cv::Mat& prev_exclusion,
+                                                const cv::Mat& cur_exclusion,
+                                                const cv::Mat& prev_depth,
+                                                const PinholeCamera* camera) const {
+  CheckMask(prev_exclusion, size, "the previous exclusion mask");
+  CheckMask(cur_exclusion, size, "the current exclusion mask");
+  if (!prev_depth.empty() && (prev_depth.type() != CV_32FC1 || prev_depth.size() != size)) {
+    throw Error("MotionConsistency: the previous depth must be CV_32FC1 of the image size");
+  }
+  MotionConsistencyResult result;
+  result.tracks = std::move(tracks);
+  std::vector<cv::Point2f> model_prev;
+  std::vector<cv::Point2f> model_cur;
+  std::vector<double> flows;
+  for (FlowTrack& track : result.tracks) {
     track.model_pair = !OnMask(prev_exclusion, track.prev) && !OnMask(cur_exclusion, track.cur) &&
-                       !NearBorder(track.prev, prev.size, options_.border_margin) &&
-                       !NearBorder(track.cur, cur.size, options_.border_margin);
+                       !NearBorder(track.prev, size, options_.border_margin) &&
+                       !NearBorder(track.cur, size, options_.border_margin);
     if (track.model_pair) {
       model_prev.push_back(track.prev);
       model_cur.push_back(track.cur);
       flows.push_back(std::hypot(track.cur.x - track.prev.x, track.cur.y - track.prev.y));
     }
-    result.tracks.push_back(track);
   }
   result.model_pairs = static_cast<int>(model_prev.size());
   if (!flows.empty()) {

@@ -83,6 +83,18 @@ class MotionConsistency {
                               const cv::Mat& cur_exclusion, const cv::Mat& prev_depth = cv::Mat(),
                               const PinholeCamera* camera = nullptr) const;
 
+  // Run's two halves, for callers that need the tracks before they know the current
+  // exclusion mask (masks carried by these very tracks). Track: the Lucas-Kanade part (same
+  // arguments as Run); the successful pairs, their tests not yet run. Test: the rest of Run on
+  // those tracks, for images of `size`. Run(...) == Test(Track(...), ...).
+  std::vector<FlowTrack> Track(const FlowImage& prev, const FlowImage& cur,
+                               const std::vector<cv::Point2f>& prev_points,
+                               const std::vector<int>& ids) const;
+  MotionConsistencyResult Test(std::vector<FlowTrack> tracks, const cv::Size& size,
+                               const cv::Mat& prev_exclusion, const cv::Mat& cur_exclusion,
+                               const cv::Mat& prev_depth = cv::Mat(),
+                               const PinholeCamera* camera = nullptr) const;
+
   // Distance of `cur` from the epipolar line F * prev in the current image.
   static double EpipolarDistance(const cv::Matx33d& fundamental, const cv::Point2f& prev,
                                  const cv::Point2f& cur);

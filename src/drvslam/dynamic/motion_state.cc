@@ -148,7 +148,7 @@ std::vector<ObjectEvidence> MotionStateClassifier::Classify(
     }
   }
 
-  std::map<int, bool> delta_states;
+  std::map<int, LastState> delta_states;
   for (std::size_t k = 0; k < current.size(); ++k) {
     const Instance& instance = current[k];
     ObjectEvidence& e = objects[k];
@@ -179,7 +179,8 @@ std::vector<ObjectEvidence> MotionStateClassifier::Classify(
         e.moving_delta_rule = false;
       } else {
         const auto last = last_delta_state_.find(e.track_id);
-        e.moving_delta_rule = last != last_delta_state_.end() ? last->second : many_moving_points;
+        e.moving_delta_rule =
+            last != last_delta_state_.end() ? last->second.moving : many_moving_points;
       }
     } else {
       e.moving_delta_rule = many_moving_points;
@@ -218,7 +219,12 @@ std::vector<ObjectEvidence> MotionStateClassifier::Classify(
       e.moving = e.moving_delta_rule = e.moving_share_rule = e.moving_reprojection_rule =
           e.moving_combined_rule = false;
     }
-    delta_states[e.track_id] = e.moving_delta_rule;
+    delta_states[e.track_id] = {e.moving_delta_rule, 0};
+  }
+  for (const auto& [id, state] : last_delta_state_) {
+    if (state.absent < options_.object_memory_frames && delta_states.count(id) == 0) {
+      delta_states[id] = {state.moving, state.absent + 1};
+    }
   }
   last_delta_state_ = std::move(delta_states);
   return objects;

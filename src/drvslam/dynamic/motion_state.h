@@ -96,8 +96,14 @@ class MotionStateClassifier {
 
  private:
   DynamicOptions options_;
-  // Last decisions of the paper's rule per track ID, for deltas between the two thresholds.
-  std::map<int, bool> last_delta_state_;
+  // Last decisions of the paper's rule per track ID, for deltas between the two thresholds;
+  // kept Dynamic.objectMemoryFrames frames after the object was last seen, so that an object
+  // whose ID comes back from the tracker's memory gets its state back too.
+  struct LastState {
+    bool moving = false;
+    int absent = 0;  // frames since it was last classified
+  };
+  std::map<int, LastState> last_delta_state_;
 };
 
 }  // namespace drvslam

@@ -122,6 +122,11 @@ cv::Mat WarpBySparseFlow(const cv::Mat& mask, const cv::Mat& from_grey, const cv
 }  // namespace
 
 MaskPropagator::MaskPropagator(const MaskPropagatorOptions& options) : options_(options) {
+  if (options_.method == MaskPropagation::kObjects) {
+    throw Error(
+        "mask propagation: Segmentation.propagation objects is carried by flow tracks "
+        "(ObjectMaskCarrier), not by MaskPropagator");
+  }
   options_.flow_scale = std::clamp(options_.flow_scale, 0.1, 1.0);
 }
 

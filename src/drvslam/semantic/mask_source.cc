@@ -37,4 +37,18 @@ Segmentation MaskSource::MasksFor(std::size_t frame_index, double timestamp, con
   return carried;
 }
 
+MaskSource::Newest MaskSource::NewestFor(std::size_t frame_index, const cv::Size& size) const {
+  Newest newest;
+  if (auto own = segmenter_.TryGet(frame_index)) {
+    newest.masks = std::move(own);
+    newest.own = true;
+    return newest;
+  }
+  std::shared_ptr<const SegmentedFrame> latest = segmenter_.Latest();
+  if (latest && latest->segmentation.frame_index < frame_index && latest->image.size() == size) {
+    newest.masks = std::move(latest);
+  }
+  return newest;
+}
+
 }  // namespace drvslam

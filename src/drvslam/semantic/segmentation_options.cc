@@ -50,7 +50,8 @@ constexpr Spelling<MaskNaming> kNamings[] = {
     {"auto", MaskNaming::kAuto}, {"stamp", MaskNaming::kTimestamp}, {"index", MaskNaming::kIndex}};
 constexpr Spelling<MaskPropagation> kPropagations[] = {{"dense", MaskPropagation::kDenseFlow},
                                                        {"sparse", MaskPropagation::kSparseFlow},
-                                                       {"none", MaskPropagation::kNone}};
+                                                       {"none", MaskPropagation::kNone},
+                                                       {"objects", MaskPropagation::kObjects}};
 
 template <typename T>
 void Require(bool ok, const char* key, const T& value, const char* rule) {
@@ -90,6 +91,10 @@ void SegmentationOptions::Check() const {
   Require(!masks_dir.empty(), "Segmentation.masksDir", "''", "must not be empty");
   Require(CocoClassId(mask_class) >= 0, "Segmentation.maskClass", "'" + mask_class + "'",
           "is not a COCO class name (e.g. person)");
+  Require(carry_frames >= 1 && carry_frames <= 1000, "Segmentation.carryFrames", carry_frames,
+          "must be in 1..1000");
+  Require(carry_min_support >= 1, "Segmentation.carryMinSupport", carry_min_support,
+          "must be at least 1");
   for (const std::string& name : class_names) {
     Require(!name.empty(), "Segmentation.classNames", "(list)", "must not hold empty names");
   }
@@ -121,6 +126,8 @@ SegmentationOptions LoadSegmentationOptions(const SettingsFile& file) {
     o.mask_class = file.GetString("Segmentation.maskClass", o.mask_class);
     o.propagation = ParseEnum(file.GetString("Segmentation.propagation", ToString(o.propagation)),
                               "Segmentation.propagation", kPropagations);
+    o.carry_frames = file.GetInt("Segmentation.carryFrames", o.carry_frames);
+    o.carry_min_support = file.GetInt("Segmentation.carryMinSupport", o.carry_min_support);
     o.moving_classes = file.GetStringList("Segmentation.movingClasses", o.moving_classes);
     o.key_objects = file.GetStringList("Segmentation.keyObjects", o.key_objects);
     o.Check();

@@ -17,8 +17,11 @@ enum class DnnTarget { kAuto, kCpu, kOpenCl, kCuda, kCudaFp16 };
 // How mask files are matched to frames: by a timestamp stem ("1305031102.175304.png"), by the
 // frame index ("12.png", "000012.png"), or kAuto: timestamps when any stem has a decimal point.
 enum class MaskNaming { kAuto, kTimestamp, kIndex };
-// How older masks are carried to the current frame when segmentation lags (--realtime).
-enum class MaskPropagation { kDenseFlow, kSparseFlow, kNone };
+// How older masks are carried to the current frame when segmentation lags (--realtime):
+// kObjects moves each instance by the dynamic front end's own flow tracks, frame to frame
+// (ObjectMaskCarrier); kDenseFlow / kSparseFlow warp them from the masks' image to the current
+// one by optical flow computed for the purpose (MaskPropagator); kNone uses them unmoved.
+enum class MaskPropagation { kDenseFlow, kSparseFlow, kNone, kObjects };
 
 struct SegmentationOptions {
   SegmenterBackend backend = SegmenterBackend::kNone;
@@ -50,7 +53,14 @@ struct SegmentationOptions {
   // COCO class given to mask ids that no instances.txt names, and to binary (0/255) masks.
   std::string mask_class = "person";
 
-  MaskPropagation propagation = MaskPropagation::kDenseFlow;
+  MaskPropagation propagation = MaskPropagation::kObjects;  // Segmentation.propagation
+  // Segmentation.carryFrames (objects propagation): masks carried longer than this many frames
+  // since their detection expire: an object the network has not re-detected for that long
+  // disappears, and masks that finish later than this are not carried at all.
+  int carry_frames = 8;
+  // Segmentation.carryMinSupport (objects propagation): an instance with fewer flow tracks
+  // starting inside it cannot be carried and disappears.
+  int carry_min_support = 3;
 
   std::vector<std::string> moving_classes = {"person", "bicycle", "car",   "motorcycle",
                                              "bus",    "truck",   "bird",  "cat",
