@@ -20,6 +20,7 @@ nlohmann::json DenseStatsJson(const DenseMapStats& s) {
                           ? 1.0 - static_cast<double>(s.exported_points) / s.full_resolution_points
                           : 0.0;
   json["resets"] = s.resets;
+  json["carving_votes"] = s.carving_votes;
   json["keyframe_ms"] = {{"median", s.keyframe_ms.median_ms},
                          {"p95", s.keyframe_ms.p95_ms},
                          {"mean", s.keyframe_ms.mean_ms},
