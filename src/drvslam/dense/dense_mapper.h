@@ -91,6 +91,7 @@ class DenseMapper {
   // The same with each point's viewpoint.
   DenseMapRays AssembleRays();
   DenseMapStats Stats() const;
+  const DenseMapOptions& Options() const { return options_; }
 
  private:
   struct KeyFrameJob {
