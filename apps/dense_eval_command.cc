@@ -88,6 +88,9 @@ const bool kRegistered = RegisterCommand("dense-eval", [](CLI::App& root) {
                   "take actor geometry at every n-th frame")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--billboards", o.billboards,
+                  "the actors' cut-out folder (Synth.Billboards) when the settings' relative path "
+                  "does not resolve");
   cmd->add_option("--json", args->json_path, "write the numbers as JSON");
   cmd->callback([args] { RunDenseEval(*args); });
 });

@@ -81,18 +81,56 @@ TEST(DenseEvidence, ADetectionMissedForThreeFramesPlantsNothing) {
   EXPECT_EQ(CountInFrontOfWall(mapper.Assemble()), 0u);
 }
 
+TEST(DenseEvidence, NeighboursVetoADetectionTheKeyFrameMissed) {
+  const CameraOptions camera = SmallCamera();
+  for (const bool veto : {true, false}) {
+    DenseMapOptions options;
+    options.enhancement_frames = 4;
+    options.min_views = 1;  // one keyframe: only the veto can keep the person out
+    options.carve = false;
+    options.neighbour_veto = veto;
+    DenseMapper mapper(camera, options, /*sequential=*/true);
+    for (long f = 0; f < 5; ++f) {
+      DenseFrame frame = PlaneFrame(camera, kWall, SE3(), f);
+      const cv::Rect body(40 + 2 * static_cast<int>(f), 20, 30, 80);  // walking slowly
+      frame.depth(body).setTo(kPerson);
+      if (f == 2) {
+        mapper.AddKeyFrame(frame, nullptr);  // the network missed it here only
+        continue;
+      }
+      DenseInstance person = BoxInstance(camera, body, kPersonClass);
+      person.potentially_moving = true;
+      person.moving = true;
+      person.track_id = 1;
+      frame.instances.push_back(person);
+      mapper.AddFrame(frame);
+    }
+    mapper.Shutdown();
+    const std::size_t planted = CountInFrontOfWall(mapper.Assemble());
+    if (veto) {
+      EXPECT_EQ(planted, 0u);
+    } else {
+      EXPECT_GT(planted, 20u);
+    }
+  }
+}
+
 TEST(DenseEvidence, OneFrameDoesNotPlantAPoint) {
   const CameraOptions camera = SmallCamera();
   DenseMapper mapper(camera, EveryFrameAKeyFrame(), /*sequential=*/true);
+  ASSERT_EQ(DenseMapOptions().min_views, 3);
   mapper.AddKeyFrame(PlaneFrame(camera, kWall, SE3(), 0), nullptr);
-  EXPECT_TRUE(mapper.Assemble().empty());
   mapper.AddKeyFrame(PlaneFrame(camera, kWall, SE3(), 1), nullptr);
+  EXPECT_TRUE(mapper.Assemble().empty());
+  mapper.AddKeyFrame(PlaneFrame(camera, kWall, SE3(), 2), nullptr);
   EXPECT_GT(mapper.Assemble().size(), 100u);
 }
 
 TEST(DenseEvidence, AVoxelSeenCloserLaterMovesTowardsTheSurface) {
   const CameraOptions camera = SmallCamera();
-  DenseMapper mapper(camera, EveryFrameAKeyFrame(), /*sequential=*/true);
+  DenseMapOptions options = EveryFrameAKeyFrame();
+  options.min_views = 2;  // the two views below
+  DenseMapper mapper(camera, options, /*sequential=*/true);
   // The true surface is z = 3.005 (inside the voxel layer [3.00, 3.03)). The far view, 3 m
   // away, reads 1.5 cm too deep; the near view, 1 m away, reads it exactly.
   constexpr float kSurface = 3.005f;

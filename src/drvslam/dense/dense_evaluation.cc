@@ -28,6 +28,22 @@ void CheckRebuilt(const synth::SynthSequence& sequence, const Trajectory& truth,
   }
 }
 
+// A relative Synth.Billboards names a folder from where `drvslam synth` ran: try the working
+// folder, then the dataset folder and its parents.
+std::string ResolveBillboards(const std::string& configured, const std::string& dataset,
+                              const std::string& settings_path) {
+  if (configured.empty() || fs::path(configured).is_absolute() || fs::is_directory(configured)) {
+    return configured;
+  }
+  fs::path base = fs::absolute(dataset);
+  for (int up = 0; up < 3 && !base.empty(); ++up, base = base.parent_path()) {
+    if (fs::is_directory(base / configured)) return (base / configured).string();
+  }
+  throw Error(settings_path + ": Synth.Billboards = " + configured +
+              " is found neither from the working folder nor from the dataset or its parents; " +
+              "pass --billboards");
+}
+
 }  // namespace
 
 DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
@@ -84,7 +100,12 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
   }
 
   const Stopwatch watch;
-  const synth::SynthSequence sequence(SynthOptionsFromSettings(settings));
+  synth::SynthOptions synth_options = SynthOptionsFromSettings(settings);
+  synth_options.billboards =
+      options.billboards.empty()
+          ? ResolveBillboards(synth_options.billboards, options.dataset, settings_path)
+          : options.billboards;
+  const synth::SynthSequence sequence(synth_options);
   CheckRebuilt(sequence, dataset.GroundTruth(), options.dataset);
   const synth::TriangleList swept =
       SweptActorGeometry(sequence, options.truth.actor_frame_stride, frames);

@@ -2,7 +2,8 @@
 // either the dense map of a SLAM run (aligned into the ground-truth frame through the run's
 // estimated trajectory) or a dense map built here with ground-truth poses, masks and moving
 // flags, against the scene's true geometry (ghosts, distance to the true surfaces, key-object
-// density; see dense_truth.h).
+// density; see dense_truth.h). Ghosts come from the actors' true surfaces at every frame, so a
+// run made with any segmenter (YOLO, masks, ground truth) is scored the same way.
 #pragma once
 
 #include <functional>
@@ -23,6 +24,9 @@ struct DenseEvaluationOptions {
   int keyframe_every = 10;
   std::size_t max_frames = 0;  // 0 = all (ground-truth mapping; actors of these frames count)
   std::string out_dir;         // ground-truth mapping: writes dense_map.ply/.pcd there
+  // The real-photo cut-outs of the actors (Synth.Billboards) when the settings' path does not
+  // resolve; empty: the settings' path, from the working folder, the dataset or its parents.
+  std::string billboards;
   DenseTruthOptions truth;
 };
 

@@ -27,13 +27,13 @@ void CheckImages(const DenseFrame& frame) {
 
 bool Valid(float z) { return std::isfinite(z) && z > 0.0f; }
 
-// Median of the valid depths under `mask`; 0 when there are none.
-float MedianDepth(const cv::Mat& depth, const cv::Mat& mask) {
+// Median of the valid depths under `mask` inside `box`; 0 when there are none.
+float MedianDepth(const cv::Mat& depth, const cv::Mat& mask, const cv::Rect& box) {
   std::vector<float> values;
-  for (int y = 0; y < depth.rows; ++y) {
+  for (int y = box.y; y < box.y + box.height; ++y) {
     const float* d = depth.ptr<float>(y);
     const uint8_t* m = mask.ptr<uint8_t>(y);
-    for (int x = 0; x < depth.cols; ++x) {
+    for (int x = box.x; x < box.x + box.width; ++x) {
       if (m[x] && Valid(d[x])) values.push_back(d[x]);
     }
   }
@@ -48,14 +48,16 @@ float MedianDepth(const cv::Mat& depth, const cv::Mat& mask) {
 // `continuity`) and stays within `band` of the object's median depth.
 void GrowAlongDepth(const cv::Mat& depth, const cv::Mat& mask, int steps, float band,
                     float continuity, cv::Mat* excluded) {
-  const float median = MedianDepth(depth, mask);
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) return;
+  const float median = MedianDepth(depth, mask, box);
   if (median <= 0.0f) return;
   const int w = depth.cols, h = depth.rows;
   std::vector<int> frontier;
-  for (int y = 0; y < h; ++y) {
+  for (int y = box.y; y < box.y + box.height; ++y) {
     const float* d = depth.ptr<float>(y);
     const uint8_t* m = mask.ptr<uint8_t>(y);
-    for (int x = 0; x < w; ++x) {
+    for (int x = box.x; x < box.x + box.width; ++x) {
       if (m[x] && Valid(d[x]) && std::abs(d[x] - median) <= band) frontier.push_back(y * w + x);
     }
   }
@@ -192,6 +194,7 @@ PixelRoles PaintRoles(const DenseFrame& frame, const DenseMapOptions& options) {
       cv::dilate(excluded, excluded, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
     }
     roles.role.setTo(static_cast<int>(PixelRole::kExcluded), excluded);
+    roles.moving = excluded;
   }
   if (options.flying_pixel_step > 0.0) {
     cv::Mat flying = cv::Mat::zeros(size, CV_8UC1);

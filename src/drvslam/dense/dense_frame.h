@@ -36,9 +36,10 @@ struct DenseFrame {
 enum class PixelRole : uint8_t { kBackground = 0, kExcluded = 1, kKeyObject = 2 };
 
 struct PixelRoles {
-  cv::Mat role;   // CV_8UC1 of PixelRole
-  cv::Mat label;  // CV_16SC1 class id, -1 = none
-  cv::Mat track;  // CV_32SC1 object ID of a kept potentially-moving object, -1 = none
+  cv::Mat role;    // CV_8UC1 of PixelRole
+  cv::Mat label;   // CV_16SC1 class id, -1 = none
+  cv::Mat track;   // CV_32SC1 object ID of a kept potentially-moving object, -1 = none
+  cv::Mat moving;  // CV_8UC1, non-zero on left-out objects (grown masks); empty when none
 };
 
 // The viewing ray of every pixel, with lens distortion removed: normalised image coordinates

@@ -175,6 +175,44 @@ DenseCloud DownsampleOnWorldGrid(DenseCloud local, const SE3& T_wa, double leaf)
   return cloud;
 }
 
+// A neighbouring frame's verdict on the keyframe's points: its left-out objects and depth.
+struct NeighbourMasks {
+  const cv::Mat* moving;
+  const cv::Mat* depth;
+  Eigen::Matrix3f R_nk;
+  Eigen::Vector3f t_nk;
+};
+
+// Drops the points (keyframe frame) that a neighbour sees, at the point's depth within the
+// carving margin, on a left-out object.
+DenseCloud DropPointsSeenMoving(const DenseCloud& points, const std::vector<NeighbourMasks>& views,
+                                const CameraOptions& camera, const DenseMapOptions& options) {
+  if (views.empty()) return points;
+  DenseCloud kept;
+  kept.reserve(points.size());
+  for (const DensePoint& p : points) {
+    bool moving = false;
+    for (const NeighbourMasks& view : views) {
+      const Eigen::Vector3f c = view.R_nk * p.position + view.t_nk;
+      if (c.z() <= 0.1f) continue;
+      const Eigen::Vector2f pixel = ProjectToImage(camera, c);
+      const int x = static_cast<int>(std::lround(pixel.x()));
+      const int y = static_cast<int>(std::lround(pixel.y()));
+      if (x < 0 || y < 0 || x >= view.moving->cols || y >= view.moving->rows) continue;
+      if (!view.moving->at<uint8_t>(y, x)) continue;
+      const float z = view.depth->at<float>(y, x);
+      const float margin =
+          static_cast<float>(options.carve_margin + options.carve_margin_quadratic * c.z() * c.z());
+      if (std::isfinite(z) && std::abs(z - c.z()) <= margin) {
+        moving = true;
+        break;
+      }
+    }
+    if (!moving) kept.push_back(p);
+  }
+  return kept;
+}
+
 }  // namespace
 
 void DenseMapper::Integrate(KeyFrameJob job) {
@@ -183,15 +221,22 @@ void DenseMapper::Integrate(KeyFrameJob job) {
   const PixelRoles roles = PaintRoles(frame, options_);
   const std::size_t mapped_pixels = CountMappedPixels(frame, roles, options_);
   const SE3 T_wa = job.keyframe ? CurrentKeyFramePose(*job.keyframe) : frame.T_wc;
-  const DenseCloud coarse = DownsampleOnWorldGrid(
-      BackProject(frame, roles, PixelRole::kBackground, rays_, options_), T_wa, options_.leaf_size);
 
   // Key objects of the keyframe and its neighbours, in the keyframe's camera frame.
   DenseCloud objects = BackProject(frame, roles, PixelRole::kKeyObject, rays_, options_);
   std::size_t used = 0;
   const SE3 T_kw = frame.T_wc.Inverse();
+  std::vector<PixelRoles> all_neighbour_roles;
+  all_neighbour_roles.reserve(job.neighbours.size());
+  std::vector<NeighbourMasks> vetoes;
   for (const DenseFrame& neighbour : job.neighbours) {
-    const PixelRoles neighbour_roles = PaintRoles(neighbour, options_);
+    all_neighbour_roles.push_back(PaintRoles(neighbour, options_));
+    const PixelRoles& neighbour_roles = all_neighbour_roles.back();
+    if (options_.neighbour_veto && !neighbour_roles.moving.empty()) {
+      const SE3 T_nk = neighbour.T_wc.Inverse() * frame.T_wc;
+      vetoes.push_back({&neighbour_roles.moving, &neighbour.depth, T_nk.Rotation().cast<float>(),
+                        T_nk.Translation().cast<float>()});
+    }
     DenseCloud points =
         BackProject(neighbour, neighbour_roles, PixelRole::kKeyObject, rays_, options_);
     if (points.empty()) continue;
@@ -204,6 +249,10 @@ void DenseMapper::Integrate(KeyFrameJob job) {
   }
   const DenseCloud fine =
       DownsampleOnWorldGrid(std::move(objects), T_wa, options_.object_leaf_size);
+  const DenseCloud coarse = DropPointsSeenMoving(
+      DownsampleOnWorldGrid(BackProject(frame, roles, PixelRole::kBackground, rays_, options_),
+                            T_wa, options_.leaf_size),
+      vetoes, camera_, options_);
 
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<SE3> poses = AnchorPoses();

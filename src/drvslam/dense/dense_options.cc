@@ -67,6 +67,7 @@ DenseMapOptions LoadDenseMapOptions(const SettingsFile& file) {
   o.min_views = file.GetInt("DenseMap.minViews", o.min_views);
   o.evidence_max = file.GetInt("DenseMap.evidenceMax", o.evidence_max);
   o.carve = file.GetBool("DenseMap.carve", o.carve);
+  o.neighbour_veto = file.GetBool("DenseMap.neighbourVeto", o.neighbour_veto);
   o.carve_margin = file.GetDouble("DenseMap.carveMargin", o.carve_margin);
   o.carve_margin_quadratic =
       file.GetDouble("DenseMap.carveMarginQuadratic", o.carve_margin_quadratic);

@@ -32,10 +32,10 @@ struct DenseMapOptions {
   // depth continues the object's (a step below flying_pixel_step) and lies within
   // mask_growth_depth_band metres of the object's median depth, at most mask_growth pixels from
   // the mask (0 = no growth). Network masks are late and loose; the object's depth is not.
-  int mask_growth = 20;
+  int mask_growth = 30;
   double mask_growth_depth_band = 0.4;
   // Then they grow by this many pixels: depth at mask borders belongs to either side.
-  int mask_dilation = 2;
+  int mask_dilation = 4;
   // Flying pixels: a pixel whose depth differs from a 4-neighbour's by more than this fraction
   // of its depth lies on a depth edge, where the sensor mixes both sides; it is left out.
   // 0 keeps them.
@@ -46,8 +46,11 @@ struct DenseMapOptions {
   // long-standing object that left is carved away after a bounded number of views. Voxels with
   // evidence <= 0 are not exported. The key-object map needs one view (it is enhanced from
   // several frames) but is carved too.
-  int min_views = 2;
-  int evidence_max = 4;
+  int min_views = 3;
+  // A keyframe point that a neighbouring frame sees at its depth inside a left-out object's
+  // mask is dropped: a detection missed in the keyframe alone plants nothing.
+  bool neighbour_veto = true;
+  int evidence_max = 3;
   bool carve = true;
   // "Clearly behind": by more than carve_margin + carve_margin_quadratic * depth^2 metres (the
   // depth noise of structured-light sensors grows with the square of depth), over the 3x3
