@@ -1,5 +1,7 @@
 #include "drvslam/dense/dense_evaluation.h"
 
+#include <octomap/OcTree.h>
+
 #include <filesystem>
 
 #include "drvslam/core/error.h"
@@ -44,6 +46,33 @@ std::string ResolveBillboards(const std::string& configured, const std::string& 
               "pass --billboards");
 }
 
+// Centres of the occupied cells of a .bt file at its resolution (pruned leaves are expanded).
+DenseCloud OccupiedCells(const std::string& path, double* resolution) {
+  if (!fs::exists(path)) throw Error(path + ": missing");
+  octomap::OcTree tree(0.1);
+  if (!tree.readBinary(path)) throw Error(path + ": not a binary OctoMap (.bt) file");
+  *resolution = tree.getResolution();
+  DenseCloud cells;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (!tree.isNodeOccupied(*it)) continue;
+    const double size = it.getSize();
+    const int n = std::max(1, static_cast<int>(std::lround(size / *resolution)));
+    const octomap::point3d c = it.getCoordinate();
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        for (int k = 0; k < n; ++k) {
+          DensePoint p;
+          p.position = {static_cast<float>(c.x() - size / 2 + (i + 0.5) * *resolution),
+                        static_cast<float>(c.y() - size / 2 + (j + 0.5) * *resolution),
+                        static_cast<float>(c.z() - size / 2 + (k + 0.5) * *resolution)};
+          cells.push_back(p);
+        }
+      }
+    }
+  }
+  return cells;
+}
+
 }  // namespace
 
 DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
@@ -63,6 +92,9 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
 
   DenseEvaluation evaluation;
   DenseCloud cloud;
+  DenseCloud cells;  // occupied OctoMap cells, aligned as the map
+  if (!options.octomap.empty())
+    cells = OccupiedCells(options.octomap, &evaluation.octomap_resolution);
   int frames = static_cast<int>(dataset.Size());
   if (options.map.empty()) {
     GroundTruthMappingOptions mapping;
@@ -85,6 +117,7 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
     if (!options.trajectory.empty()) {
       const Trajectory estimate = ReadTumTrajectory(options.trajectory);
       cloud = AlignCloudToTruth(cloud, estimate, dataset.GroundTruth());
+      if (!cells.empty()) cells = AlignCloudToTruth(cells, estimate, dataset.GroundTruth());
       // Actors count up to the run's last frame.
       if (!estimate.empty()) {
         int last = 0;
@@ -113,6 +146,10 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
   evaluation.actor_triangles = swept.size();
   evaluation.scores = ScoreDenseCloud(cloud, sequence.Scene().triangles, swept,
                                       KeyObjectLabels(sequence), options.truth);
+  if (!options.octomap.empty()) {
+    evaluation.octomap_scores = ScoreDenseCloud(cells, sequence.Scene().triangles, swept,
+                                                KeyObjectLabels(sequence), options.truth);
+  }
   evaluation.seconds = watch.ElapsedMs() / 1000.0;
   return evaluation;
 }

@@ -27,13 +27,18 @@ struct DenseEvaluationOptions {
   // The real-photo cut-outs of the actors (Synth.Billboards) when the settings' path does not
   // resolve; empty: the settings' path, from the working folder, the dataset or its parents.
   std::string billboards;
+  // A run's dense_map.bt: its occupied leaves (centres at the tree's resolution) are scored
+  // like map points, aligned with `trajectory` as the map is.
+  std::string octomap;
   DenseTruthOptions truth;
 };
 
 struct DenseEvaluation {
   DenseTruthScores scores;
-  std::optional<DenseMapStats> stats;  // ground-truth mapping only
-  int frames = 0;                      // frames whose actors count as swept space
+  std::optional<DenseMapStats> stats;              // ground-truth mapping only
+  std::optional<DenseTruthScores> octomap_scores;  // with options.octomap
+  double octomap_resolution = 0.0;
+  int frames = 0;  // frames whose actors count as swept space
   std::size_t actor_triangles = 0;
   double seconds = 0.0;  // evaluation time (scene rebuild and scoring)
 };
