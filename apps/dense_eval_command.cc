@@ -42,10 +42,26 @@ void RunDenseEval(const DenseEvalArguments& args) {
   std::printf("swept space:         %zu actor triangles over %d frames\n",
               evaluation.actor_triangles, evaluation.frames);
   std::printf("%s", FormatDenseTruthScores(evaluation.scores).c_str());
+  if (evaluation.octomap_scores) {
+    const DenseTruthScores& o = *evaluation.octomap_scores;
+    std::printf("octomap:             %zu occupied %.3f m cells, %zu in swept space (%s)\n",
+                o.points, evaluation.octomap_resolution, o.ghosts,
+                o.ghost_share ? (std::to_string(100.0 * *o.ghost_share) + "%").c_str() : "n/a");
+    if (o.mean_distance && o.p95_distance) {
+      std::printf("  cell centres:      mean %.4f m, p95 %.4f m from the static surfaces\n",
+                  *o.mean_distance, *o.p95_distance);
+    } else {
+      std::printf("  cell centres:      n/a (no occupied cell off the swept space)\n");
+    }
+  }
   if (!args.json_path.empty()) {
     nlohmann::json json;
     json["truth"] = DenseTruthScoresJson(evaluation.scores);
     if (evaluation.stats) json["dense"] = DenseStatsJson(*evaluation.stats);
+    if (evaluation.octomap_scores) {
+      json["octomap"] = DenseTruthScoresJson(*evaluation.octomap_scores);
+      json["octomap"]["resolution"] = evaluation.octomap_resolution;
+    }
     json["frames"] = evaluation.frames;
     json["map"] = o.map;
     json["trajectory"] = o.trajectory;
@@ -88,6 +104,12 @@ const bool kRegistered = RegisterCommand("dense-eval", [](CLI::App& root) {
                   "take actor geometry at every n-th frame")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--billboards", o.billboards,
+                  "the actors' cut-out folder (Synth.Billboards) when the settings' relative path "
+                  "does not resolve");
+  cmd->add_option("--octomap", o.octomap,
+                  "the run's dense_map.bt: score its occupied cells as well (aligned with "
+                  "--trajectory)");
   cmd->add_option("--json", args->json_path, "write the numbers as JSON");
   cmd->callback([args] { RunDenseEval(*args); });
 });

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  libeigen3-dev libopencv-dev libceres-dev libopen3d-dev
+  libeigen3-dev libopencv-dev libceres-dev libopen3d-dev liboctomap-dev
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   opencv-doc

@@ -16,7 +16,8 @@ TEST(BackProject, PlaneLandsAtItsDepthThroughThePinhole) {
   const CameraOptions camera = SmallCamera();
   DenseFrame frame = PlaneFrame(camera, 2.0f);
   frame.depth.at<float>(5, 7) = 1.0f;
-  const DenseMapOptions options;
+  DenseMapOptions options;
+  options.flying_pixel_step = 0.0;  // the lone nearer pixel stays
   const PixelRoles roles = PaintRoles(frame, options);
   const DenseCloud cloud = BackProject(frame, roles, PixelRole::kBackground, camera, options);
   ASSERT_EQ(cloud.size(), static_cast<std::size_t>(camera.width * camera.height));
@@ -42,7 +43,8 @@ TEST(BackProject, DepthOutsideTheRangeIsLeftOut) {
   frame.depth(cv::Rect(10, 0, 10, 10)).setTo(9.0f);  // beyond max_depth
   frame.depth(cv::Rect(20, 0, 10, 10)).setTo(0.1f);  // nearer than min_depth
   frame.depth.at<float>(50, 50) = std::numeric_limits<float>::quiet_NaN();
-  const DenseMapOptions options;
+  DenseMapOptions options;
+  options.flying_pixel_step = 0.0;  // the depth steps are not what this test is about
   const PixelRoles roles = PaintRoles(frame, options);
   const DenseCloud cloud = BackProject(frame, roles, PixelRole::kBackground, camera, options);
   EXPECT_EQ(cloud.size(), static_cast<std::size_t>(camera.width * camera.height - 301));
@@ -60,6 +62,7 @@ TEST(PaintRoles, MovingObjectsAreExcludedWithGrownMasks) {
   frame.instances.push_back(person);
   DenseMapOptions options;
   options.mask_dilation = 2;
+  options.mask_growth = 0;  // the fixed dilation alone
   const PixelRoles roles = PaintRoles(frame, options);
   const DenseCloud cloud = BackProject(frame, roles, PixelRole::kBackground, camera, options);
   // The 20 x 20 box grown by 2 px (elliptic corners): between 24^2 minus the corners and 24^2.

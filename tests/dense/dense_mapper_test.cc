@@ -48,10 +48,13 @@ std::size_t CountLabel(const DenseCloud& cloud, int label) {
 TEST(DenseMapper, KeyObjectsAreDenserThanTheBackground) {
   const CameraOptions camera = SmallCamera();
   DenseMapOptions options;
-  options.enhancement_frames = 3;
+  options.enhancement_frames = 3;  // one frame before the keyframe, two after it
+  options.min_views = 1;           // one keyframe: its background counts
   DenseMapper mapper(camera, options, /*sequential=*/true);
-  for (int i = 0; i < 3; ++i) mapper.AddFrame(BookFrame(camera, i, 0.0013 * i));
-  mapper.AddKeyFrame(BookFrame(camera, 3, 0.0039), nullptr);
+  mapper.AddFrame(BookFrame(camera, 0, 0.0));
+  mapper.AddKeyFrame(BookFrame(camera, 1, 0.0013), nullptr);
+  EXPECT_EQ(mapper.Stats().keyframes, 0u);  // waits for the frames after it
+  for (int i = 2; i < 4; ++i) mapper.AddFrame(BookFrame(camera, i, 0.0013 * i));
   const DenseCloud cloud = mapper.Assemble();
   const DenseMapStats stats = mapper.Stats();
   EXPECT_EQ(stats.keyframes, 1u);
@@ -113,7 +116,9 @@ TEST(DenseMapper, ThreadedAndSequentialGiveTheSameMap) {
 
 TEST(DenseMapper, PointsFollowTheirKeyFrameWhenItsPoseIsCorrected) {
   const CameraOptions camera = SmallCamera();
-  const DenseMapOptions options;
+  DenseMapOptions options;
+  options.min_views = 1;
+  options.enhancement_frames = 0;
   DenseMapper mapper(camera, options, true);
   const std::shared_ptr<KeyFrame> keyframe = MakeKeyFrame(camera, SE3(), 0);
   mapper.AddKeyFrame(PlaneFrame(camera, 2.0f), keyframe);
@@ -137,6 +142,8 @@ TEST(DenseMapper, AnObjectThatStartsMovingLeavesNoGhost) {
   for (const bool sticky : {true, false}) {
     DenseMapOptions options;
     options.sticky_moving = sticky;
+    options.min_views = 1;  // the still person is mapped from one keyframe
+    options.enhancement_frames = 0;
     DenseMapper mapper(camera, options, true);
     DenseFrame still = PlaneFrame(camera, 2.0f, SE3(), 0);
     DenseInstance person = BoxInstance(camera, cv::Rect(40, 30, 40, 60), kPersonClass);
@@ -162,7 +169,9 @@ TEST(DenseMapper, AnObjectThatStartsMovingLeavesNoGhost) {
 
 TEST(DenseMapper, ResetDropsTheMap) {
   const CameraOptions camera = SmallCamera();
-  DenseMapper mapper(camera, DenseMapOptions(), false);
+  DenseMapOptions options;
+  options.min_views = 1;
+  DenseMapper mapper(camera, options, false);
   mapper.AddKeyFrame(PlaneFrame(camera, 2.0f), nullptr);
   mapper.Reset();
   mapper.AddKeyFrame(PlaneFrame(camera, 1.0f), nullptr);

@@ -1,5 +1,9 @@
 #include "drvslam/dense/anchored_voxel_map.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "drvslam/dense/dense_frame.h"
 #include "drvslam/dense/voxel_grid.h"
 
 namespace drvslam {
@@ -8,44 +12,152 @@ namespace {
 // One node of std::unordered_map: key, value, next pointer, cached hash (libstdc++), plus the
 // bucket pointer.
 constexpr std::size_t kHashNodeBytes = sizeof(int64_t) + sizeof(uint32_t) + 2 * sizeof(void*) + 8;
+constexpr float kMinWeightDepth = 0.1f;
 
-Eigen::Vector3f ToWorld(const SE3& T_wa, const Eigen::Vector3f& local) {
-  return (T_wa * local.cast<double>()).cast<float>();
+struct Rigid {
+  Eigen::Matrix3f R;
+  Eigen::Vector3f t;
+  Eigen::Vector3f operator*(const Eigen::Vector3f& p) const { return R * p + t; }
+};
+
+Rigid ToRigid(const SE3& T) { return {T.Rotation().cast<float>(), T.Translation().cast<float>()}; }
+
+std::vector<Rigid> Rigids(const std::vector<SE3>& poses, bool inverse) {
+  std::vector<Rigid> out;
+  out.reserve(poses.size());
+  for (const SE3& T : poses) out.push_back(ToRigid(inverse ? T.Inverse() : T));
+  return out;
+}
+
+// Structured-light depth noise grows with z^2, so a view's variance with z^4.
+float ViewWeight(const Eigen::Vector3f& local) {
+  const float z = std::max(local.z(), kMinWeightDepth);
+  const float z2 = z * z;
+  return 1.0f / (z2 * z2);
+}
+
+uint8_t Blend(uint8_t a, uint8_t b, float share) {
+  return static_cast<uint8_t>(std::lround(a + (static_cast<float>(b) - a) * share));
 }
 
 }  // namespace
 
-AnchoredVoxelMap::AnchoredVoxelMap(double leaf) : leaf_(leaf) {}
+AnchoredVoxelMap::AnchoredVoxelMap(double leaf, VoxelEvidenceOptions evidence)
+    : leaf_(leaf), evidence_(evidence) {}
 
 std::size_t AnchoredVoxelMap::Bytes() const {
   return points_.capacity() * sizeof(Stored) + index_.size() * kHashNodeBytes +
          index_.bucket_count() * sizeof(void*);
 }
 
-std::size_t AnchoredVoxelMap::Insert(const DenseCloud& local, int anchor, const SE3& T_wa) {
+bool AnchoredVoxelMap::Confirmed(const Stored& stored) const {
+  return stored.views >= evidence_.min_views && stored.evidence > 0;
+}
+
+void AnchoredVoxelMap::Refine(Stored* stored, const Eigen::Vector3f& position_in_anchor,
+                              const DensePoint& other, float weight) {
+  const float total = stored->weight + weight;
+  const float share = total > 0.0f ? weight / total : 1.0f;
+  DensePoint& p = stored->point;
+  p.position += (position_in_anchor - p.position) * share;
+  p.r = Blend(p.r, other.r, share);
+  p.g = Blend(p.g, other.g, share);
+  p.b = Blend(p.b, other.b, share);
+  if (p.label < 0) p.label = other.label;
+  if (p.track < 0) p.track = other.track;
+  stored->weight = total;
+}
+
+std::size_t AnchoredVoxelMap::Insert(const DenseCloud& local, int anchor,
+                                     const std::vector<SE3>& T_wa) {
+  const Rigid to_world = ToRigid(T_wa[anchor]);
+  std::vector<Rigid> from_world;  // built when a taken voxel is met
+  const int max = evidence_.evidence_max;
   std::size_t added = 0;
   for (const DensePoint& point : local) {
-    const std::optional<int64_t> key = VoxelKey(ToWorld(T_wa, point.position), leaf_);
+    const Eigen::Vector3f world = to_world * point.position;
+    const std::optional<int64_t> key = VoxelKey(world, leaf_);
     if (!key) continue;
     const auto [it, inserted] = index_.try_emplace(*key, static_cast<uint32_t>(points_.size()));
-    if (!inserted) continue;
-    points_.push_back({point, anchor});
-    ++added;
+    if (inserted) {
+      Stored stored;
+      stored.point = point;
+      stored.anchor = anchor;
+      stored.weight = ViewWeight(point.position);
+      stored.views = 1;
+      stored.evidence = 1;
+      points_.push_back(stored);
+      ++added;
+      continue;
+    }
+    if (from_world.empty()) from_world = Rigids(T_wa, /*inverse=*/true);
+    Stored& stored = points_[it->second];
+    Refine(&stored, from_world[stored.anchor] * world, point, ViewWeight(point.position));
+    if (stored.views < UINT16_MAX) ++stored.views;
+    stored.evidence = static_cast<int16_t>(std::min<int>(stored.evidence + 1, max));
   }
   return added;
 }
 
+std::size_t AnchoredVoxelMap::Carve(const CarvingView& view, const std::vector<SE3>& T_wa) {
+  const cv::Mat& depth = *view.depth;
+  const CameraOptions& camera = *view.camera;
+  std::vector<Rigid> to_camera;
+  to_camera.reserve(T_wa.size());
+  for (const SE3& T : T_wa) to_camera.push_back(ToRigid(view.T_cw * T));
+  const float margin = static_cast<float>(view.margin);
+  const float quadratic = static_cast<float>(view.quadratic);
+  const int min = -evidence_.evidence_max;
+  std::size_t votes = 0;
+  for (Stored& stored : points_) {
+    if (stored.evidence <= min) continue;
+    const Eigen::Vector3f c = to_camera[stored.anchor] * stored.point.position;
+    if (c.z() <= kMinWeightDepth) continue;
+    const Eigen::Vector2f pixel = ProjectToImage(camera, c);
+    const int x = static_cast<int>(std::lround(pixel.x()));
+    const int y = static_cast<int>(std::lround(pixel.y()));
+    if (x < 1 || y < 1 || x + 1 >= depth.cols || y + 1 >= depth.rows) continue;
+    // Every one of the 3x3 depths must lie behind: at depth edges some do not.
+    const float behind = c.z() + margin + quadratic * c.z() * c.z();
+    bool through = true;
+    for (int dy = -1; dy <= 1 && through; ++dy) {
+      const float* row = depth.ptr<float>(y + dy);
+      for (int dx = -1; dx <= 1; ++dx) {
+        const float z = row[x + dx];
+        if (!(std::isfinite(z) && z > behind)) {
+          through = false;
+          break;
+        }
+      }
+    }
+    if (!through) continue;
+    --stored.evidence;
+    ++votes;
+  }
+  return votes;
+}
+
 std::size_t AnchoredVoxelMap::Rekey(const std::vector<SE3>& T_wa) {
+  const std::vector<Rigid> to_world = Rigids(T_wa, false);
+  std::vector<Rigid> from_world;
   std::vector<Stored> kept;
   kept.reserve(points_.size());
   std::unordered_map<int64_t, uint32_t> index;
   index.reserve(points_.size());
   for (const Stored& stored : points_) {
-    const std::optional<int64_t> key =
-        VoxelKey(ToWorld(T_wa[stored.anchor], stored.point.position), leaf_);
+    const Eigen::Vector3f world = to_world[stored.anchor] * stored.point.position;
+    const std::optional<int64_t> key = VoxelKey(world, leaf_);
     if (!key) continue;
-    if (!index.try_emplace(*key, static_cast<uint32_t>(kept.size())).second) continue;
-    kept.push_back(stored);
+    const auto [it, inserted] = index.try_emplace(*key, static_cast<uint32_t>(kept.size()));
+    if (inserted) {
+      kept.push_back(stored);
+      continue;
+    }
+    if (from_world.empty()) from_world = Rigids(T_wa, /*inverse=*/true);
+    Stored& into = kept[it->second];
+    Refine(&into, from_world[into.anchor] * world, stored.point, stored.weight);
+    into.views = std::max(into.views, stored.views);
+    into.evidence = std::max(into.evidence, stored.evidence);
   }
   const std::size_t merged = points_.size() - kept.size();
   kept.shrink_to_fit();
@@ -54,15 +166,19 @@ std::size_t AnchoredVoxelMap::Rekey(const std::vector<SE3>& T_wa) {
   return merged;
 }
 
-DenseCloud AnchoredVoxelMap::World(const std::vector<SE3>& T_wa,
-                                   const std::set<int>& moving_tracks) const {
+DenseCloud AnchoredVoxelMap::World(const std::vector<SE3>& T_wa, const std::set<int>& moving_tracks,
+                                   std::vector<int>* anchors) const {
+  const std::vector<Rigid> to_world = Rigids(T_wa, false);
   DenseCloud world;
   world.reserve(points_.size());
+  if (anchors != nullptr) anchors->clear();
   for (const Stored& stored : points_) {
+    if (!Confirmed(stored)) continue;
     if (stored.point.track >= 0 && moving_tracks.count(stored.point.track)) continue;
     DensePoint p = stored.point;
-    p.position = ToWorld(T_wa[stored.anchor], p.position);
+    p.position = to_world[stored.anchor] * p.position;
     world.push_back(p);
+    if (anchors != nullptr) anchors->push_back(stored.anchor);
   }
   return world;
 }

@@ -1,5 +1,7 @@
 #include "drvslam/dense/dense_evaluation.h"
 
+#include <octomap/OcTree.h>
+
 #include <filesystem>
 
 #include "drvslam/core/error.h"
@@ -28,6 +30,49 @@ void CheckRebuilt(const synth::SynthSequence& sequence, const Trajectory& truth,
   }
 }
 
+// A relative Synth.Billboards names a folder from where `drvslam synth` ran: try the working
+// folder, then the dataset folder and its parents.
+std::string ResolveBillboards(const std::string& configured, const std::string& dataset,
+                              const std::string& settings_path) {
+  if (configured.empty() || fs::path(configured).is_absolute() || fs::is_directory(configured)) {
+    return configured;
+  }
+  fs::path base = fs::absolute(dataset);
+  for (int up = 0; up < 3 && !base.empty(); ++up, base = base.parent_path()) {
+    if (fs::is_directory(base / configured)) return (base / configured).string();
+  }
+  throw Error(settings_path + ": Synth.Billboards = " + configured +
+              " is found neither from the working folder nor from the dataset or its parents; " +
+              "pass --billboards");
+}
+
+// Centres of the occupied cells of a .bt file at its resolution (pruned leaves are expanded).
+DenseCloud OccupiedCells(const std::string& path, double* resolution) {
+  if (!fs::exists(path)) throw Error(path + ": missing");
+  octomap::OcTree tree(0.1);
+  if (!tree.readBinary(path)) throw Error(path + ": not a binary OctoMap (.bt) file");
+  *resolution = tree.getResolution();
+  DenseCloud cells;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (!tree.isNodeOccupied(*it)) continue;
+    const double size = it.getSize();
+    const int n = std::max(1, static_cast<int>(std::lround(size / *resolution)));
+    const octomap::point3d c = it.getCoordinate();
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        for (int k = 0; k < n; ++k) {
+          DensePoint p;
+          p.position = {static_cast<float>(c.x() - size / 2 + (i + 0.5) * *resolution),
+                        static_cast<float>(c.y() - size / 2 + (j + 0.5) * *resolution),
+                        static_cast<float>(c.z() - size / 2 + (k + 0.5) * *resolution)};
+          cells.push_back(p);
+        }
+      }
+    }
+  }
+  return cells;
+}
+
 }  // namespace
 
 DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
@@ -47,6 +92,9 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
 
   DenseEvaluation evaluation;
   DenseCloud cloud;
+  DenseCloud cells;  // occupied OctoMap cells, aligned as the map
+  if (!options.octomap.empty())
+    cells = OccupiedCells(options.octomap, &evaluation.octomap_resolution);
   int frames = static_cast<int>(dataset.Size());
   if (options.map.empty()) {
     GroundTruthMappingOptions mapping;
@@ -69,6 +117,7 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
     if (!options.trajectory.empty()) {
       const Trajectory estimate = ReadTumTrajectory(options.trajectory);
       cloud = AlignCloudToTruth(cloud, estimate, dataset.GroundTruth());
+      if (!cells.empty()) cells = AlignCloudToTruth(cells, estimate, dataset.GroundTruth());
       // Actors count up to the run's last frame.
       if (!estimate.empty()) {
         int last = 0;
@@ -84,7 +133,12 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
   }
 
   const Stopwatch watch;
-  const synth::SynthSequence sequence(SynthOptionsFromSettings(settings));
+  synth::SynthOptions synth_options = SynthOptionsFromSettings(settings);
+  synth_options.billboards =
+      options.billboards.empty()
+          ? ResolveBillboards(synth_options.billboards, options.dataset, settings_path)
+          : options.billboards;
+  const synth::SynthSequence sequence(synth_options);
   CheckRebuilt(sequence, dataset.GroundTruth(), options.dataset);
   const synth::TriangleList swept =
       SweptActorGeometry(sequence, options.truth.actor_frame_stride, frames);
@@ -92,6 +146,10 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
   evaluation.actor_triangles = swept.size();
   evaluation.scores = ScoreDenseCloud(cloud, sequence.Scene().triangles, swept,
                                       KeyObjectLabels(sequence), options.truth);
+  if (!options.octomap.empty()) {
+    evaluation.octomap_scores = ScoreDenseCloud(cells, sequence.Scene().triangles, swept,
+                                                KeyObjectLabels(sequence), options.truth);
+  }
   evaluation.seconds = watch.ElapsedMs() / 1000.0;
   return evaluation;
 }

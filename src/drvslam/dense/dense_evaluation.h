@@ -2,7 +2,8 @@
 // either the dense map of a SLAM run (aligned into the ground-truth frame through the run's
 // estimated trajectory) or a dense map built here with ground-truth poses, masks and moving
 // flags, against the scene's true geometry (ghosts, distance to the true surfaces, key-object
-// density; see dense_truth.h).
+// density; see dense_truth.h). Ghosts come from the actors' true surfaces at every frame, so a
+// run made with any segmenter (YOLO, masks, ground truth) is scored the same way.
 #pragma once
 
 #include <functional>
@@ -23,13 +24,21 @@ struct DenseEvaluationOptions {
   int keyframe_every = 10;
   std::size_t max_frames = 0;  // 0 = all (ground-truth mapping; actors of these frames count)
   std::string out_dir;         // ground-truth mapping: writes dense_map.ply/.pcd there
+  // The real-photo cut-outs of the actors (Synth.Billboards) when the settings' path does not
+  // resolve; empty: the settings' path, from the working folder, the dataset or its parents.
+  std::string billboards;
+  // A run's dense_map.bt: its occupied leaves (centres at the tree's resolution) are scored
+  // like map points, aligned with `trajectory` as the map is.
+  std::string octomap;
   DenseTruthOptions truth;
 };
 
 struct DenseEvaluation {
   DenseTruthScores scores;
-  std::optional<DenseMapStats> stats;  // ground-truth mapping only
-  int frames = 0;                      // frames whose actors count as swept space
+  std::optional<DenseMapStats> stats;              // ground-truth mapping only
+  std::optional<DenseTruthScores> octomap_scores;  // with options.octomap
+  double octomap_resolution = 0.0;
+  int frames = 0;  // frames whose actors count as swept space
   std::size_t actor_triangles = 0;
   double seconds = 0.0;  // evaluation time (scene rebuild and scoring)
 };

@@ -1,5 +1,7 @@
 #include "drvslam/dense/dense_export.h"
 
+#include <spdlog/spdlog.h>
+
 #include <filesystem>
 
 #include "drvslam/core/error.h"
@@ -12,13 +14,26 @@ DenseExport ExportDenseMap(DenseMapper& mapper, const std::string& folder) {
   std::error_code error;
   fs::create_directories(folder, error);
   if (error || !fs::is_directory(folder)) throw Error(folder + ": cannot create output folder");
-  const DenseCloud cloud = mapper.Assemble();
+  const DenseMapRays rays = mapper.AssembleRays();
+  const DenseCloud& cloud = rays.cloud;
   DenseExport result;
   result.ply_path = (fs::path(folder) / "dense_map.ply").string();
   result.pcd_path = (fs::path(folder) / "dense_map.pcd").string();
   result.points = cloud.size();
   WritePlyCloud(result.ply_path, cloud);
   WritePcdCloud(result.pcd_path, cloud);
+  const double resolution = mapper.Options().octomap_resolution;
+  if (resolution > 0.0) {
+    result.octomap =
+        WriteDenseOctoMap(rays, resolution, (fs::path(folder) / "dense_map.bt").string(),
+                          (fs::path(folder) / "dense_map_labels.json").string());
+    const DenseOctoMapExport& o = *result.octomap;
+    spdlog::info(
+        "dense_map.bt: {} occupied and {} free leaves at {} m, {:.2f} MB; built in {:.0f} ms, "
+        "written in {:.0f} ms",
+        o.occupied_leaves, o.free_leaves, resolution, o.bytes / (1024.0 * 1024.0), o.build_ms,
+        o.write_ms);
+  }
   return result;
 }
 

@@ -1,11 +1,14 @@
 // ExportDenseMap: writes the dense map as it stands - assembled with the current keyframe poses
-// - to FOLDER/dense_map.ply and FOLDER/dense_map.pcd. `drvslam run` calls it at shutdown; any
-// caller may call it while mapping runs (Assemble is thread-safe).
+// - to FOLDER/dense_map.ply and FOLDER/dense_map.pcd, and with DenseMap.octomapResolution > 0
+// its OctoMap to FOLDER/dense_map.bt with the labels in FOLDER/dense_map_labels.json. `drvslam run`
+// calls it at shutdown; any caller may call it while mapping runs (Assemble is thread-safe).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "drvslam/dense/dense_mapper.h"
+#include "drvslam/dense/dense_octomap.h"
 
 namespace drvslam {
 
@@ -13,6 +16,7 @@ struct DenseExport {
   std::string ply_path;
   std::string pcd_path;
   std::size_t points = 0;
+  std::optional<DenseOctoMapExport> octomap;  // when written
 };
 
 // Creates the folder when missing. Throws Error naming the path that cannot be written.

@@ -37,8 +37,11 @@ DenseMapper::DenseMapper(const CameraOptions& camera, const DenseMapOptions& opt
       options_(Checked(options)),
       sequential_(sequential),
       timings_(timings),
-      coarse_(options.leaf_size),
-      fine_(options.object_leaf_size),
+      rays_(MakePixelRays(camera)),
+      frames_before_(options.enhancement_frames / 2),
+      frames_after_(options.enhancement_frames - options.enhancement_frames / 2),
+      coarse_(options.leaf_size, {options.min_views, options.evidence_max}),
+      fine_(options.object_leaf_size, {1, options.evidence_max}),
       queue_(static_cast<std::size_t>(options.queue_capacity)) {
   if (!sequential_) worker_ = std::thread([this] { Run(); });
 }
@@ -47,6 +50,7 @@ DenseMapper::~DenseMapper() { Shutdown(); }
 
 void DenseMapper::Shutdown() {
   if (stopped_) return;
+  DispatchWaiting(/*flush=*/true);
   stopped_ = true;
   queue_.Close();
   if (worker_.joinable()) worker_.join();
@@ -93,33 +97,56 @@ void DenseMapper::MarkMoving(DenseFrame* frame) {
   }
 }
 
+void DenseMapper::Remember(DenseFrame frame) {
+  if (options_.enhancement_frames == 0) return;
+  // Later frames join the keyframes that wait for them; the ring keeps the latest for the next.
+  for (KeyFrameJob& job : waiting_) {
+    if (job.frames_to_wait == 0) continue;
+    job.neighbours.push_back(frame);
+    --job.frames_to_wait;
+  }
+  if (frames_before_ > 0) {
+    ring_.push_back(std::move(frame));
+    if (ring_.size() > static_cast<std::size_t>(frames_before_)) ring_.erase(ring_.begin());
+  }
+}
+
 void DenseMapper::AddFrame(DenseFrame frame) {
   CheckDenseFrame(frame);
   MarkMoving(&frame);
   ++frames_;
-  if (options_.enhancement_frames == 0) return;
-  ring_.push_back(std::move(frame));
-  if (ring_.size() > static_cast<std::size_t>(options_.enhancement_frames)) {
-    ring_.erase(ring_.begin());
-  }
+  Remember(std::move(frame));
+  DispatchWaiting(/*flush=*/false);
 }
 
 void DenseMapper::AddKeyFrame(DenseFrame frame, std::shared_ptr<const KeyFrame> keyframe) {
   CheckDenseFrame(frame);
   MarkMoving(&frame);
+  ++frames_;
   KeyFrameJob job;
-  // The ring holds exactly the latest enhancement_frames frames: the nearest ones in time that
-  // are known now, the same whether the job runs at once or later.
+  // The ring holds exactly the latest frames_before_ frames and the job then collects the next
+  // frames_after_: the nearest ones in time, the same whether the job runs at once or later.
   job.neighbours = ring_;
   job.keyframe = std::move(keyframe);
   job.frame = frame;
-  ++frames_;
-  if (options_.enhancement_frames > 0) {
-    ring_.push_back(std::move(frame));
-    if (ring_.size() > static_cast<std::size_t>(options_.enhancement_frames)) {
-      ring_.erase(ring_.begin());
-    }
+  job.frames_to_wait = frames_after_;
+  Remember(std::move(frame));
+  waiting_.push_back(std::move(job));
+  // After shutdown no later frames are expected: integrate at once.
+  DispatchWaiting(/*flush=*/stopped_);
+}
+
+void DenseMapper::DispatchWaiting(bool flush) {
+  // In order: a keyframe never overtakes an earlier one.
+  std::size_t done = 0;
+  while (done < waiting_.size() && (flush || waiting_[done].frames_to_wait == 0)) {
+    Dispatch(std::move(waiting_[done]));
+    ++done;
   }
+  waiting_.erase(waiting_.begin(), waiting_.begin() + static_cast<std::ptrdiff_t>(done));
+}
+
+void DenseMapper::Dispatch(Job job) {
   if (sequential_ || stopped_) {
     Process(std::move(job));
   } else {
@@ -128,30 +155,90 @@ void DenseMapper::AddKeyFrame(DenseFrame frame, std::shared_ptr<const KeyFrame> 
 }
 
 void DenseMapper::Reset() {
+  // Waiting keyframes belong to the map being dropped.
+  waiting_.clear();
   ring_.clear();
-  if (sequential_ || stopped_) {
-    Process(ResetJob{});
-  } else {
-    queue_.Push(ResetJob{});
-  }
+  Dispatch(ResetJob{});
 }
+
+namespace {
+
+// Points of the anchor's camera frame, one per voxel of the world grid (through T_wa): the
+// map's own voxels, so a view counts once per voxel.
+DenseCloud DownsampleOnWorldGrid(DenseCloud local, const SE3& T_wa, double leaf) {
+  const Eigen::Matrix3f R = T_wa.Rotation().cast<float>();
+  const Eigen::Vector3f t = T_wa.Translation().cast<float>();
+  for (DensePoint& p : local) p.position = R * p.position + t;
+  DenseCloud cloud = VoxelDownsample(local, leaf);
+  const Eigen::Matrix3f Rt = R.transpose();
+  for (DensePoint& p : cloud) p.position = Rt * (p.position - t);
+  return cloud;
+}
+
+// A neighbouring frame's verdict on the keyframe's points: its left-out objects and depth.
+struct NeighbourMasks {
+  const cv::Mat* moving;
+  const cv::Mat* depth;
+  Eigen::Matrix3f R_nk;
+  Eigen::Vector3f t_nk;
+};
+
+// Drops the points (keyframe frame) that a neighbour sees, at the point's depth within the
+// carving margin, on a left-out object.
+DenseCloud DropPointsSeenMoving(const DenseCloud& points, const std::vector<NeighbourMasks>& views,
+                                const CameraOptions& camera, const DenseMapOptions& options) {
+  if (views.empty()) return points;
+  DenseCloud kept;
+  kept.reserve(points.size());
+  for (const DensePoint& p : points) {
+    bool moving = false;
+    for (const NeighbourMasks& view : views) {
+      const Eigen::Vector3f c = view.R_nk * p.position + view.t_nk;
+      if (c.z() <= 0.1f) continue;
+      const Eigen::Vector2f pixel = ProjectToImage(camera, c);
+      const int x = static_cast<int>(std::lround(pixel.x()));
+      const int y = static_cast<int>(std::lround(pixel.y()));
+      if (x < 0 || y < 0 || x >= view.moving->cols || y >= view.moving->rows) continue;
+      if (!view.moving->at<uint8_t>(y, x)) continue;
+      const float z = view.depth->at<float>(y, x);
+      const float margin =
+          static_cast<float>(options.carve_margin + options.carve_margin_quadratic * c.z() * c.z());
+      if (std::isfinite(z) && std::abs(z - c.z()) <= margin) {
+        moving = true;
+        break;
+      }
+    }
+    if (!moving) kept.push_back(p);
+  }
+  return kept;
+}
+
+}  // namespace
 
 void DenseMapper::Integrate(KeyFrameJob job) {
   const Stopwatch watch;
   const DenseFrame& frame = job.frame;
   const PixelRoles roles = PaintRoles(frame, options_);
   const std::size_t mapped_pixels = CountMappedPixels(frame, roles, options_);
-  const DenseCloud coarse = VoxelDownsample(
-      BackProject(frame, roles, PixelRole::kBackground, camera_, options_), options_.leaf_size);
+  const SE3 T_wa = job.keyframe ? CurrentKeyFramePose(*job.keyframe) : frame.T_wc;
 
   // Key objects of the keyframe and its neighbours, in the keyframe's camera frame.
-  DenseCloud objects = BackProject(frame, roles, PixelRole::kKeyObject, camera_, options_);
+  DenseCloud objects = BackProject(frame, roles, PixelRole::kKeyObject, rays_, options_);
   std::size_t used = 0;
   const SE3 T_kw = frame.T_wc.Inverse();
+  std::vector<PixelRoles> all_neighbour_roles;
+  all_neighbour_roles.reserve(job.neighbours.size());
+  std::vector<NeighbourMasks> vetoes;
   for (const DenseFrame& neighbour : job.neighbours) {
-    const PixelRoles neighbour_roles = PaintRoles(neighbour, options_);
+    all_neighbour_roles.push_back(PaintRoles(neighbour, options_));
+    const PixelRoles& neighbour_roles = all_neighbour_roles.back();
+    if (options_.neighbour_veto && !neighbour_roles.moving.empty()) {
+      const SE3 T_nk = neighbour.T_wc.Inverse() * frame.T_wc;
+      vetoes.push_back({&neighbour_roles.moving, &neighbour.depth, T_nk.Rotation().cast<float>(),
+                        T_nk.Translation().cast<float>()});
+    }
     DenseCloud points =
-        BackProject(neighbour, neighbour_roles, PixelRole::kKeyObject, camera_, options_);
+        BackProject(neighbour, neighbour_roles, PixelRole::kKeyObject, rays_, options_);
     if (points.empty()) continue;
     ++used;
     const SE3 T_kn = T_kw * neighbour.T_wc;
@@ -160,14 +247,30 @@ void DenseMapper::Integrate(KeyFrameJob job) {
     for (DensePoint& p : points) p.position = R * p.position + t;
     objects.insert(objects.end(), points.begin(), points.end());
   }
-  const DenseCloud fine = VoxelDownsample(objects, options_.object_leaf_size);
+  const DenseCloud fine =
+      DownsampleOnWorldGrid(std::move(objects), T_wa, options_.object_leaf_size);
+  const DenseCloud coarse = DropPointsSeenMoving(
+      DownsampleOnWorldGrid(BackProject(frame, roles, PixelRole::kBackground, rays_, options_),
+                            T_wa, options_.leaf_size),
+      vetoes, camera_, options_);
 
-  const SE3 T_wa = job.keyframe ? CurrentKeyFramePose(*job.keyframe) : frame.T_wc;
   std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<SE3> poses = AnchorPoses();
+  if (options_.carve) {
+    // The keyframe's depth votes before its own points go in: what it sees through is free.
+    CarvingView view;
+    view.depth = &frame.depth;
+    view.camera = &camera_;
+    view.T_cw = T_wa.Inverse();
+    view.margin = options_.carve_margin;
+    view.quadratic = options_.carve_margin_quadratic;
+    stats_.carving_votes += coarse_.Carve(view, poses) + fine_.Carve(view, poses);
+  }
   const int anchor = static_cast<int>(anchors_.size());
   anchors_.push_back({job.keyframe, frame.T_wc});
-  coarse_.Insert(coarse, anchor, T_wa);
-  fine_.Insert(fine, anchor, T_wa);
+  poses.push_back(T_wa);
+  coarse_.Insert(coarse, anchor, poses);
+  fine_.Insert(fine, anchor, poses);
   ++stats_.keyframes;
   stats_.enhancement_frames += used;
   stats_.full_resolution_points += mapped_pixels;
@@ -193,7 +296,9 @@ void DenseMapper::CompactLocked() {
   since_compaction_ = 0;
 }
 
-DenseCloud DenseMapper::Assemble() {
+DenseCloud DenseMapper::Assemble() { return AssembleRays().cloud; }
+
+DenseMapRays DenseMapper::AssembleRays() {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::vector<SE3> poses = AnchorPoses();
   coarse_.Rekey(poses);
@@ -204,12 +309,26 @@ DenseCloud DenseMapper::Assemble() {
     std::lock_guard<std::mutex> moving_lock(moving_mutex_);
     moving = moving_tracks_;
   }
-  DenseCloud cloud = RemoveIsolatedPoints(coarse_.World(poses, moving), options_.leaf_size,
-                                          options_.min_neighbours);
-  const DenseCloud objects = fine_.World(poses, moving);
-  cloud.insert(cloud.end(), objects.begin(), objects.end());
-  stats_.exported_points = cloud.size();
-  return cloud;
+  DenseMapRays rays;
+  std::vector<int> coarse_anchors;
+  const DenseCloud coarse = coarse_.World(poses, moving, &coarse_anchors);
+  const std::vector<std::size_t> kept =
+      ConnectedPointIndices(coarse, options_.leaf_size, options_.min_neighbours);
+  std::vector<int> object_anchors;
+  const DenseCloud objects = fine_.World(poses, moving, &object_anchors);
+  rays.cloud.reserve(kept.size() + objects.size());
+  rays.origin_of_point.reserve(kept.size() + objects.size());
+  for (const std::size_t i : kept) {
+    rays.cloud.push_back(coarse[i]);
+    rays.origin_of_point.push_back(coarse_anchors[i]);
+  }
+  rays.cloud.insert(rays.cloud.end(), objects.begin(), objects.end());
+  rays.origin_of_point.insert(rays.origin_of_point.end(), object_anchors.begin(),
+                              object_anchors.end());
+  rays.origins.reserve(poses.size());
+  for (const SE3& T_wa : poses) rays.origins.push_back(T_wa.Translation().cast<float>());
+  stats_.exported_points = rays.cloud.size();
+  return rays;
 }
 
 DenseMapStats DenseMapper::Stats() const {

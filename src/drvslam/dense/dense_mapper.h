@@ -1,10 +1,12 @@
 // DenseMapper: the dense mapping thread (DESIGN.md's pipeline). Tracking hands it every tracked
-// frame (kept in a short ring for the enhancement step) and each new keyframe (queued). Per
-// keyframe it back-projects the depth, leaves out moving objects, downsamples globally into the
-// coarse world-voxel map and adds the static key objects - from the keyframe and its nearest
-// ordinary frames, at full resolution - into the fine map. Points are anchored to their
-// keyframe, so pose corrections move them (see AnchoredVoxelMap); Assemble gives the map with
-// the current poses.
+// frame (kept in a short ring for the enhancement step) and each new keyframe, which waits for
+// the ordinary frames after it and is then queued. Per keyframe it first lets the depth vote
+// on the map (voxels it sees through lose evidence), then back-projects the depth along
+// undistorted rays, leaves out moving objects (masks grown along their depth) and flying
+// pixels, downsamples on the world voxel grid into the coarse map and adds the static key
+// objects - from the keyframe and its nearest ordinary frames on both sides, at full
+// resolution - into the fine map. Points are anchored to their keyframe, so pose corrections
+// move them (see AnchoredVoxelMap); Assemble gives the confirmed map with the current poses.
 // Thread-safety: AddFrame, AddKeyFrame, Reset and Shutdown are called by the tracking thread;
 // Assemble and Stats from any thread. mutex_ guards the maps, anchors and statistics (held by
 // the dense thread while it inserts and compacts), moving_mutex_ the moving tracks; the
@@ -45,11 +47,20 @@ struct DenseMapStats {
   // depth pixel of every keyframe.
   std::size_t full_resolution_points = 0;
   std::size_t resets = 0;
-  TimingSummary keyframe_ms;  // integration time per keyframe (dense thread)
+  std::size_t carving_votes = 0;  // seen-through votes cast on stored voxels
+  TimingSummary keyframe_ms;      // integration time per keyframe (dense thread)
 };
 
 // A keyframe's current T_wc; a keyframe that local mapping removed follows its parent.
 SE3 CurrentKeyFramePose(const KeyFrame& keyframe);
+
+// The assembled map with where each point was seen from: the world camera centre of its
+// anchor keyframe (the ray an occupancy map carves free space along).
+struct DenseMapRays {
+  DenseCloud cloud;
+  std::vector<Eigen::Vector3f> origins;  // per anchor
+  std::vector<int> origin_of_point;      // per point of cloud
+};
 
 class DenseMapper {
  public:
@@ -69,20 +80,25 @@ class DenseMapper {
   void AddKeyFrame(DenseFrame frame, std::shared_ptr<const KeyFrame> keyframe);
   // Tracking started a new map: everything mapped so far is dropped (in order with the queue).
   void Reset();
-  // Integrates every queued keyframe and stops the thread; later keyframes are integrated on
-  // the caller's thread. Idempotent.
+  // Integrates every waiting and queued keyframe and stops the thread; later keyframes are
+  // integrated on the caller's thread. Idempotent. Call it before Assemble to include the
+  // keyframes that still wait for their later frames.
   void Shutdown();
 
-  // The map in the world frame with the current keyframe poses: coarse points (isolated ones
-  // removed) then key-object points. Also compacts the stored maps.
+  // The confirmed map in the world frame with the current keyframe poses: coarse points
+  // (isolated ones removed) then key-object points. Also compacts the stored maps.
   DenseCloud Assemble();
+  // The same with each point's viewpoint.
+  DenseMapRays AssembleRays();
   DenseMapStats Stats() const;
+  const DenseMapOptions& Options() const { return options_; }
 
  private:
   struct KeyFrameJob {
     DenseFrame frame;
     std::shared_ptr<const KeyFrame> keyframe;
-    std::vector<DenseFrame> neighbours;  // nearest ordinary frames
+    std::vector<DenseFrame> neighbours;  // nearest ordinary frames, before and after
+    int frames_to_wait = 0;              // later frames still to come
   };
   struct ResetJob {};
   using Job = std::variant<KeyFrameJob, ResetJob>;
@@ -93,6 +109,11 @@ class DenseMapper {
   };
 
   void Run();
+  // Hands a keyframe whose neighbours are complete (or a reset) to the thread.
+  void Dispatch(Job job);
+  // Dispatches the waiting keyframes that have all their later frames (all with `flush`).
+  void DispatchWaiting(bool flush);
+  void Remember(DenseFrame frame);
   void Process(Job job);
   void Integrate(KeyFrameJob job);
   void MarkMoving(DenseFrame* frame);
@@ -105,7 +126,12 @@ class DenseMapper {
   bool sequential_;
   StageTimings* timings_;
 
+  PixelRays rays_;
+  int frames_before_ = 0;  // enhancement frames before a keyframe
+  int frames_after_ = 0;   // and after it
+
   std::vector<DenseFrame> ring_;          // latest ordinary frames, oldest first (tracking thread)
+  std::vector<KeyFrameJob> waiting_;      // keyframes waiting for later frames (tracking thread)
   std::set<int> moving_tracks_tracking_;  // tracking thread's copy
 
   std::atomic<std::size_t> frames_{0};

@@ -17,8 +17,9 @@ struct DenseMapOptions {
   double leaf_size = 0.03;
   // Static key objects (books, laptops, keyboards, ...): one point per voxel of this edge.
   double object_leaf_size = 0.005;
-  // Ordinary frames nearest in time to a keyframe whose key-object pixels are added too: the
-  // ring buffer keeps this many of the latest frames.
+  // Ordinary frames nearest in time to a keyframe whose key-object pixels are added too: half
+  // of them (rounded down) before the keyframe, the rest after it, so a keyframe is integrated
+  // once that many later frames have arrived (or at shutdown).
   int enhancement_frames = 4;
   // Leave out the pixels of objects judged moving; off integrates everything (for comparison).
   bool remove_dynamic = true;
@@ -27,9 +28,35 @@ struct DenseMapOptions {
   // An object judged moving once stays out (its earlier still points are dropped too): a
   // person who stops walking for a moment leaves no ghost.
   bool sticky_moving = true;
-  // Masks of left-out objects grow by this many pixels: depth at mask borders belongs to
-  // either side.
+  // Masks of left-out objects first grow along their own depth: into neighbouring pixels whose
+  // depth continues the object's (a step below flying_pixel_step) and lies within
+  // mask_growth_depth_band metres of the object's median depth, at most mask_growth pixels from
+  // the mask (0 = no growth). Network masks are late and loose; the object's depth is not.
+  int mask_growth = 30;
+  double mask_growth_depth_band = 0.4;
+  // Then they grow by this many pixels: depth at mask borders belongs to either side.
   int mask_dilation = 4;
+  // Flying pixels: a pixel whose depth differs from a 4-neighbour's by more than this fraction
+  // of its depth lies on a depth edge, where the sensor mixes both sides; it is left out.
+  // 0 keeps them.
+  double flying_pixel_step = 0.03;
+  // Evidence (coarse map): a voxel is exported once min_views keyframes saw a point in it.
+  // Each view adds one to its evidence and each later keyframe whose depth lies clearly behind
+  // it (seen through) takes one away; evidence is clamped to [-evidence_max, evidence_max] so a
+  // long-standing object that left is carved away after a bounded number of views. Voxels with
+  // evidence <= 0 are not exported. The key-object map needs one view (it is enhanced from
+  // several frames) but is carved too.
+  int min_views = 3;
+  // A keyframe point that a neighbouring frame sees at its depth inside a left-out object's
+  // mask is dropped: a detection missed in the keyframe alone plants nothing.
+  bool neighbour_veto = true;
+  int evidence_max = 3;
+  bool carve = true;
+  // "Clearly behind": by more than carve_margin + carve_margin_quadratic * depth^2 metres (the
+  // depth noise of structured-light sensors grows with the square of depth), over the 3x3
+  // pixels around the voxel's projection (depth edges vote nothing).
+  double carve_margin = 0.05;
+  double carve_margin_quadratic = 0.005;
   // Assembly drops points with fewer occupied neighbouring voxels (of the 26) than this;
   // 0 keeps all.
   int min_neighbours = 1;
@@ -38,6 +65,9 @@ struct DenseMapOptions {
   // The stored map is re-keyed with the current keyframe poses after this many keyframes, so
   // voxels that pose corrections made coincide merge and memory follows the explored volume.
   int compact_every = 10;
+  // dense_map.bt beside dense_map.ply: an OctoMap of occupied and free space at this leaf
+  // (metres); 0 writes none.
+  double octomap_resolution = 0.05;
 
   // Throws Error naming the DenseMap.* key of a bad value.
   void Check() const;

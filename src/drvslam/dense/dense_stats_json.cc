@@ -23,6 +23,7 @@ nlohmann::json DenseStatsJson(const DenseMapStats& s) {
           : nlohmann::json(nullptr);
   json["reduction_baseline"] = kDenseReductionBaseline;
   json["resets"] = s.resets;
+  json["carving_votes"] = s.carving_votes;
   json["keyframe_ms"] = {{"median", s.keyframe_ms.median_ms},
                          {"p95", s.keyframe_ms.p95_ms},
                          {"mean", s.keyframe_ms.mean_ms},

@@ -68,6 +68,8 @@ GroundTruthMapping MapWithGroundTruth(
     }
     if (progress) progress(i + 1, total);
   }
+  // Keyframes near the end wait for later frames that never come: integrate them now.
+  mapper.Shutdown();
   GroundTruthMapping result;
   result.cloud = mapper.Assemble();
   result.stats = mapper.Stats();

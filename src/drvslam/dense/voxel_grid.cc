@@ -80,6 +80,21 @@ DenseCloud VoxelDownsample(const DenseCloud& points, double leaf) {
 
 DenseCloud RemoveIsolatedPoints(const DenseCloud& points, double leaf, int min_neighbours) {
   if (min_neighbours <= 0) return points;
+  DenseCloud kept;
+  const std::vector<std::size_t> indices = ConnectedPointIndices(points, leaf, min_neighbours);
+  kept.reserve(indices.size());
+  for (const std::size_t i : indices) kept.push_back(points[i]);
+  return kept;
+}
+
+std::vector<std::size_t> ConnectedPointIndices(const DenseCloud& points, double leaf,
+                                               int min_neighbours) {
+  std::vector<std::size_t> kept;
+  kept.reserve(points.size());
+  if (min_neighbours <= 0) {
+    for (std::size_t i = 0; i < points.size(); ++i) kept.push_back(i);
+    return kept;
+  }
   std::unordered_map<int64_t, int> occupancy;
   occupancy.reserve(points.size() + 16);
   std::vector<std::optional<int64_t>> keys(points.size());
@@ -87,8 +102,6 @@ DenseCloud RemoveIsolatedPoints(const DenseCloud& points, double leaf, int min_n
     keys[i] = VoxelKey(points[i].position, leaf);
     if (keys[i]) ++occupancy[*keys[i]];
   }
-  DenseCloud kept;
-  kept.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!keys[i]) continue;
     const Eigen::Matrix<int64_t, 3, 1> v = UnpackVoxel(*keys[i]);
@@ -104,7 +117,7 @@ DenseCloud RemoveIsolatedPoints(const DenseCloud& points, double leaf, int min_n
         }
       }
     }
-    if (neighbours >= min_neighbours) kept.push_back(points[i]);
+    if (neighbours >= min_neighbours) kept.push_back(i);
   }
   return kept;
 }

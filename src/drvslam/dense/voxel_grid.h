@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "drvslam/dense/dense_point.h"
 
@@ -32,5 +33,8 @@ DenseCloud VoxelDownsample(const DenseCloud& points, double leaf);
 // Keeps the points with at least `min_neighbours` of the 26 neighbouring voxels (edge `leaf`)
 // occupied by other points of the cloud: isolated depth outliers go, surfaces stay.
 DenseCloud RemoveIsolatedPoints(const DenseCloud& points, double leaf, int min_neighbours);
+// The indices (ascending) of the points RemoveIsolatedPoints keeps.
+std::vector<std::size_t> ConnectedPointIndices(const DenseCloud& points, double leaf,
+                                               int min_neighbours);
 
 }  // namespace drvslam

@@ -1,0 +1,88 @@
+#include "drvslam/dense/dense_octomap.h"
+
+#include <octomap/OcTree.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "drvslam/core/error.h"
+#include "drvslam/core/timing.h"
+
+namespace drvslam {
+namespace {
+
+octomap::point3d ToOcto(const Eigen::Vector3f& p) { return {p.x(), p.y(), p.z()}; }
+
+// Key order for a deterministic side table.
+struct KeyLess {
+  bool operator()(const octomap::OcTreeKey& a, const octomap::OcTreeKey& b) const {
+    if (a[0] != b[0]) return a[0] < b[0];
+    if (a[1] != b[1]) return a[1] < b[1];
+    return a[2] < b[2];
+  }
+};
+
+}  // namespace
+
+DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution,
+                                     const std::string& bt_path, const std::string& labels_path) {
+  DenseOctoMapExport result;
+  result.bt_path = bt_path;
+  result.labels_path = labels_path;
+  const Stopwatch build;
+  octomap::OcTree tree(resolution);
+  // One scan per anchor keyframe, from its camera centre.
+  std::vector<octomap::Pointcloud> scans(rays.origins.size());
+  std::map<octomap::OcTreeKey, int, KeyLess> labels;
+  for (std::size_t i = 0; i < rays.cloud.size(); ++i) {
+    const DensePoint& p = rays.cloud[i];
+    scans[static_cast<std::size_t>(rays.origin_of_point[i])].push_back(ToOcto(p.position));
+    if (p.label < 0) continue;
+    octomap::OcTreeKey key;
+    if (tree.coordToKeyChecked(ToOcto(p.position), key)) labels.emplace(key, p.label);
+  }
+  for (std::size_t a = 0; a < scans.size(); ++a) {
+    if (scans[a].size() == 0) continue;
+    tree.insertPointCloud(scans[a], ToOcto(rays.origins[a]), /*maxrange=*/-1.0,
+                          /*lazy_eval=*/true, /*discretize=*/true);
+  }
+  tree.updateInnerOccupancy();
+  tree.prune();
+  result.build_ms = build.ElapsedMs();
+
+  const Stopwatch write;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (tree.isNodeOccupied(*it)) {
+      ++result.occupied_leaves;
+    } else {
+      ++result.free_leaves;
+    }
+  }
+  if (!tree.writeBinary(bt_path)) throw Error(bt_path + ": cannot write the OctoMap");
+  nlohmann::json table;
+  table["resolution"] = resolution;
+  table["format"] = "leaves: [x, y, z, class id] at occupied leaf centres (metres, world frame)";
+  nlohmann::json leaves = nlohmann::json::array();
+  for (const auto& [key, label] : labels) {
+    const octomap::OcTreeNode* node = tree.search(key);
+    if (node == nullptr || !tree.isNodeOccupied(node)) continue;
+    const octomap::point3d centre = tree.keyToCoord(key);
+    leaves.push_back({centre.x(), centre.y(), centre.z(), label});
+  }
+  result.labelled_leaves = leaves.size();
+  table["leaves"] = std::move(leaves);
+  std::ofstream out(labels_path);
+  if (!out) throw Error(labels_path + ": cannot open for writing");
+  out << table.dump() << "\n";
+  if (!out) throw Error(labels_path + ": write failed");
+  out.close();
+  result.write_ms = write.ElapsedMs();
+  std::error_code error;
+  result.bytes = static_cast<std::size_t>(std::filesystem::file_size(bt_path, error));
+  return result;
+}
+
+}  // namespace drvslam

@@ -1,0 +1,33 @@
+// The dense map as an OctoMap (dense_map.bt), what DS-SLAM/SG-SLAM-style planners load:
+// occupied space at the map's confirmed points and free space along the rays from the keyframe
+// each point is anchored to. Moving objects never enter it (their pixels are never mapped), so
+// the space people walked through is free or unknown.
+// Labels go to a side table (dense_map_labels.json: class id per occupied leaf) rather than a
+// ColorOcTree: .bt is the binary occupancy format every OctoMap tool and planner reads, and
+// colour channels would be a lossy, undocumented place for class ids.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "drvslam/dense/dense_mapper.h"
+
+namespace drvslam {
+
+struct DenseOctoMapExport {
+  std::string bt_path;
+  std::string labels_path;
+  std::size_t occupied_leaves = 0;
+  std::size_t free_leaves = 0;
+  std::size_t labelled_leaves = 0;
+  std::size_t bytes = 0;  // of dense_map.bt
+  double build_ms = 0.0;  // ray insertion
+  double write_ms = 0.0;  // both files
+};
+
+// Builds the OctoMap at `resolution` (metres) and writes bt_path and labels_path. Throws Error
+// naming the path that cannot be written.
+DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution,
+                                     const std::string& bt_path, const std::string& labels_path);
+
+}  // namespace drvslam
