@@ -60,6 +60,7 @@ void SynthOptions::Check() const {
     throw Error("start stamp must be a non-negative number");
   }
   sensor.Check();
+  real_camera.Check();
 }
 
 CameraOptions SynthOptions::Camera() const {
@@ -74,7 +75,16 @@ CameraOptions SynthOptions::Camera() const {
   camera.width = width;
   camera.height = height;
   camera.fps = fps;
+  camera.k1 = real_camera.k1;
+  camera.k2 = real_camera.k2;
+  camera.p1 = real_camera.p1;
+  camera.p2 = real_camera.p2;
+  camera.k3 = real_camera.k3;
   return camera;
+}
+
+CameraOptions SynthOptions::StatedCamera() const {
+  return synth::StatedCamera(Camera(), real_camera);
 }
 
 }  // namespace drvslam::synth
