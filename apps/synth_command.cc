@@ -144,6 +144,10 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
   cmd->add_option("--width", o.width, "image width; TUM fr3 intrinsics are scaled to it")
       ->capture_default_str();
   cmd->add_option("--height", o.height, "image height")->capture_default_str();
+  cmd->add_option("--camera-speed", o.camera_speed,
+                  "the camera path runs this many times faster, as a quickly moved hand-held "
+                  "camera (more blur and shear with --real-camera; e.g. 3)")
+      ->capture_default_str();
   cmd->add_flag("--clean", args->clean,
                 "no sensor effects at all: exact colour, exact depth (to the file's 1/5000 m)");
   cmd->add_flag("--no-depth-noise", args->no_depth_noise, "no Kinect-like depth noise");

@@ -301,6 +301,21 @@ TEST(RealCameraTest, ActorsBetweenFramesMoveLinearly) {
             1e-12);
 }
 
+TEST(RealCameraTest, CameraSpeedRunsThePathFaster) {
+  SynthOptions options = SmallOptions("static_rpy", 40);
+  const SynthSequence normal(options);
+  options.camera_speed = 2.0;
+  const SynthSequence fast(options);
+  for (const int f : {1, 7, 19}) {
+    EXPECT_LT((fast.Pose(f).Translation() - normal.Pose(2 * f).Translation()).norm(), 1e-12);
+    EXPECT_LT((fast.Pose(f).Rotation() - normal.Pose(2 * f).Rotation()).norm(), 1e-12);
+    EXPECT_EQ(fast.Stamp(f), normal.Stamp(f));  // time itself runs as before
+  }
+  // Sub-frame poses follow the fast path too.
+  EXPECT_LT((fast.PoseAt(5, 0.01).Translation() - normal.PoseAt(10, 0.02).Translation()).norm(),
+            1e-12);
+}
+
 // --- Depth misregistration -----------------------------------------------------------------
 
 TEST(RealCameraTest, DepthShiftMovesADepthEdgeByTheSetPixels) {

@@ -56,6 +56,9 @@ void SynthOptions::Check() const {
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0)) {
     throw Error("--fps " + std::to_string(fps) + " must be in (0, 1000]");
   }
+  if (!(std::isfinite(camera_speed) && camera_speed > 0.0 && camera_speed <= 20.0)) {
+    throw Error("--camera-speed " + std::to_string(camera_speed) + " must be in (0, 20]");
+  }
   if (!(std::isfinite(start_stamp) && start_stamp >= 0.0)) {
     throw Error("start stamp must be a non-negative number");
   }

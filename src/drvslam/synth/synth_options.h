@@ -39,6 +39,9 @@ struct SynthOptions {
   int width = 640;                     // TUM fr3 intrinsics are scaled to this size
   int height = 480;
   double fps = 30.0;
+  // The camera path runs this many times faster (a quickly moved hand-held camera: more motion
+  // blur and rolling-shutter shear). A replayed recording then covers fewer frames.
+  double camera_speed = 1.0;
   double start_stamp = kDefaultStartStamp;
   SensorOptions sensor;
   // Motion blur, rolling shutter, depth misregistration, calibration error, lens distortion:

@@ -70,7 +70,9 @@ SynthSequence::SynthSequence(const SynthOptions& options)
     }
     path_ = CameraPath::Replay(recorded, anchor);
     start = path_.RecordedStart();
-    const int available = static_cast<int>(std::floor(path_.Duration() * options_.fps + 1e-9)) + 1;
+    const int available = static_cast<int>(std::floor(
+                              path_.Duration() / options_.camera_speed * options_.fps + 1e-9)) +
+                          1;
     if (options_.frames < 0) {
       frames = available;
     } else if (options_.frames > available) {
@@ -95,7 +97,7 @@ SynthSequence::SynthSequence(const SynthOptions& options)
   for (int f = 0; f < frames; ++f) {
     times_.push_back(f / options_.fps);
     stamps_.push_back(start + times_.back());
-    poses_.push_back(path_.PoseAt(times_.back()));
+    poses_.push_back(path_.PoseAt(options_.camera_speed * times_.back()));
   }
   std::vector<Eigen::Vector3d> centres;
   for (const SE3& pose : poses_) centres.push_back(pose.Translation());
@@ -169,15 +171,15 @@ RenderBuffers SynthSequence::Render(int frame, bool apply_sensor) const {
   if (real.DepthShift()) ShiftDepth(real.depth_shift_x, real.depth_shift_y, &buffers);
   if (apply_sensor) {
     const double t = times_[frame];
-    const SE3 T_start_now =
-        path_.PoseAt(t - options_.sensor.exposure_time).Inverse() * poses_[frame];
+    const SE3 T_start_now = PoseAt(frame, -options_.sensor.exposure_time).Inverse() * poses_[frame];
     sensor_.Apply(frame, t, T_start_now, &buffers);
   }
   return buffers;
 }
 
 SE3 SynthSequence::PoseAt(int frame, double offset) const {
-  return offset == 0.0 ? poses_[frame] : path_.PoseAt(times_[frame] + offset);
+  return offset == 0.0 ? poses_[frame]
+                       : path_.PoseAt(options_.camera_speed * (times_[frame] + offset));
 }
 
 void SynthSequence::AppendMoversAt(int frame, double offset, TriangleList* movers) const {
@@ -248,6 +250,8 @@ std::string SynthSequence::SettingsExtraYaml() const {
   add("MotionBlur", flag(s.motion_blur));
   add("ExposureTime", Number(s.exposure_time));
   add("BlurSamples", Number(s.blur_samples));
+  // Written only when changed, as the real-camera keys below.
+  if (options_.camera_speed != 1.0) add("CameraSpeed", Number(options_.camera_speed));
   const RealCameraOptions& r = options_.real_camera;
   if (!r.Any()) return yaml;  // sequences without them stay byte-identical to earlier ones
   yaml +=
