@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <functional>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -37,6 +38,13 @@ struct SynthArguments {
   std::string depth_shift, principal_point_error, distortion;
   std::vector<std::pair<CLI::Option*, std::function<void(synth::RealCameraOptions&)>>> overrides;
 };
+
+// A number as help text shows it: 0.015, not 0.015000.
+std::string Short(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
 
 // "X,Y" to two numbers; throws Error naming the flag.
 std::pair<double, double> ParsePair(const std::string& flag, const std::string& text) {
@@ -156,7 +164,8 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
   cmd->add_flag("--no-color-noise", args->no_color_noise, "no colour noise");
   cmd->add_flag("--no-exposure", args->no_exposure, "no auto-exposure brightness drift");
   cmd->add_flag("--motion-blur", args->motion_blur,
-                "blur along the camera motion (off by default)");
+                "blur along the camera motion (off by default): a cheap approximation from "
+                "one render and its depth, camera motion only; --blur-exposure renders it");
   cmd->add_option("--depth-noise", o.sensor.depth_noise_coeff,
                   "depth noise sigma per squared metre (sigma = value * z^2)")
       ->capture_default_str();
@@ -173,7 +182,7 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
   real_option("--blur-exposure", &real.blur_exposure,
               "motion blur: exposure time in seconds, centred on each row's time, camera and "
               "actors moving (0 = off; --real-camera: " +
-                  std::to_string(handheld.blur_exposure) + ")",
+                  Short(handheld.blur_exposure) + ")",
               [args](synth::RealCameraOptions& r) { r.blur_exposure = args->real.blur_exposure; });
   real_option("--blur-samples", &real.blur_samples,
               "renders averaged per blurred frame (odd: the middle one gives depth and masks)",
@@ -181,7 +190,7 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
   real_option("--rolling-shutter", &real.rolling_shutter_readout,
               "rolling shutter: readout time in seconds from the top row to the bottom one; the "
               "timestamp and ground truth belong to the image's middle (0 = off; --real-camera: " +
-                  std::to_string(handheld.rolling_shutter_readout) + ")",
+                  Short(handheld.rolling_shutter_readout) + ")",
               [args](synth::RealCameraOptions& r) {
                 r.rolling_shutter_readout = args->real.rolling_shutter_readout;
               });
