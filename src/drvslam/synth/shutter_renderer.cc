@@ -111,10 +111,10 @@ void ShutterRenderer::RenderBand(int row_begin, int row_end, double offset,
                                  const SceneAt& scene_at, bool parallel, RenderBuffers* out) const {
   const auto [canvas_begin, canvas_end] = distortion_.CanvasRows(row_begin, row_end);
   const int canvas_width = distortion_.Canvas().width;
-  const auto render_at = [&](double time, RenderBuffers* buffers) {
+  const auto render_at = [&](double time_offset, RenderBuffers* buffers) {
     SE3 T_cw;
     TriangleList movers;
-    scene_at(time, &T_cw, &movers);
+    scene_at(time_offset, &T_cw, &movers);
     rasterizer_.RenderRows({&statics, &movers}, textures, T_cw, canvas_begin, canvas_end, buffers,
                            parallel);
   };
@@ -138,21 +138,22 @@ void ShutterRenderer::RenderBand(int row_begin, int row_end, double offset,
       float* incidence_row = out->incidence.ptr<float>(y);
       for (int x = 0; x < sensor_.width; ++x) {
         float colour[3];
-        int cx = x, cy = y - canvas_begin;
+        // The canvas pixel whose depth and instance id this pixel takes.
+        int source_x = x, source_y = y - canvas_begin;
         if (distortion_.Identity()) {
-          const float* sum = colour_sum.ptr<float>(cy) + 3 * x;
+          const float* sum = colour_sum.ptr<float>(source_y) + 3 * x;
           for (int k = 0; k < 3; ++k) colour[k] = sum[k];
         } else {
           const float u = distortion_.CanvasX(x, y);
           const float v = distortion_.CanvasY(x, y) - static_cast<float>(canvas_begin);
           SampleBilinear(colour_sum, u, v, colour);
-          cx = std::min(static_cast<int>(std::lround(u)), canvas_width - 1);
-          cy = std::min(static_cast<int>(std::lround(v)), canvas_end - canvas_begin - 1);
+          source_x = std::min(static_cast<int>(std::lround(u)), canvas_width - 1);
+          source_y = std::min(static_cast<int>(std::lround(v)), canvas_end - canvas_begin - 1);
         }
         for (int k = 0; k < 3; ++k) bgr_row[3 * x + k] = ToByte(colour[k] * inverse_count);
-        depth_row[x] = centre.depth.ptr<float>(cy)[cx];
-        id_row[x] = centre.instance.ptr<uint16_t>(cy)[cx];
-        incidence_row[x] = centre.incidence.ptr<float>(cy)[cx];
+        depth_row[x] = centre.depth.ptr<float>(source_y)[source_x];
+        id_row[x] = centre.instance.ptr<uint16_t>(source_y)[source_x];
+        incidence_row[x] = centre.incidence.ptr<float>(source_y)[source_x];
       }
     }
   };
