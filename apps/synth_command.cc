@@ -198,6 +198,16 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
               "bands of rows that share one exposure time", [args](synth::RealCameraOptions& r) {
                 r.rolling_shutter_steps = args->real.rolling_shutter_steps;
               });
+  args->overrides.emplace_back(
+      cmd->add_option("--depth-global-shutter", real.depth_global_shutter,
+                      "1: with --rolling-shutter, depth is captured at once at the timestamp (a "
+                      "RealSense's global-shutter depth sensor), so moving depth misregisters "
+                      "against the colour rows; 0: depth follows the colour rows (a Kinect v1; "
+                      "--real-camera: 1)")
+          ->capture_default_str(),
+      [args](synth::RealCameraOptions& r) {
+        r.depth_global_shutter = args->real.depth_global_shutter;
+      });
   real_option("--depth-shift", &args->depth_shift,
               "DX,DY: depth misregistered against colour by this many pixels (sub-pixel "
               "allowed; depth at (x, y) is the true depth at (x - DX, y - DY); masks stay with "
@@ -224,7 +234,8 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
               [args](synth::RealCameraOptions& r) { r.SetDistortion(args->distortion); });
   cmd->add_flag("--real-camera", args->real_camera,
                 "a quickly moved hand-held real camera: --blur-exposure 0.015 --rolling-shutter "
-                "0.025 --depth-shift 1.5,1 --intrinsics-error 0.03 --distortion fr1; the flags "
+                "0.025 --depth-global-shutter 1 --depth-shift 1.5,1 --intrinsics-error 0.03 "
+                "--distortion fr1; the flags "
                 "above, when given, override these");
   cmd->add_flag("--list", args->list, "list the scenarios and exit");
   cmd->callback([args] { RunSynth(*args); });

@@ -239,6 +239,18 @@ TEST(RealCameraTest, RollingShutterShearsAMovingBarByTheReadout) {
   // Colour follows the mask: the edge pixel is white, the one left of it dark.
   EXPECT_EQ(b.bgr.at<cv::Vec3b>(0, sheared[0])[0], 230);
   EXPECT_EQ(b.bgr.at<cv::Vec3b>(0, sheared[0] - 1)[0], 20);
+  // Depth follows the rows too (a Kinect v1)...
+  EXPECT_EQ(b.depth.at<float>(0, sheared[0]), 2.0f);
+  EXPECT_EQ(b.depth.at<float>(0, sheared[0] - 1), 4.0f);
+  // ...unless the depth sensor has a global shutter (a RealSense): then depth is the
+  // timestamp's on every row, and misregisters against the sheared colour and mask.
+  options.depth_global_shutter = true;
+  const ShutterRenderer global(TestCamera(), options, Unlit());
+  RenderBuffers c;
+  global.Render(wall, TwoTextures(), moving, &c);
+  EXPECT_EQ(cv::norm(c.depth, a.depth, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(c.instance, b.instance, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(c.bgr, b.bgr, cv::NORM_INF), 0.0);
 }
 
 TEST(RealCameraTest, RollingShutterBandsEqualRendersAtTheirTimes) {
@@ -587,6 +599,13 @@ TEST(RealCameraTest, DistortedSequenceStatesItsCoefficientsAndKeepsMasksWithColo
     }
   }
   EXPECT_EQ(mismatches, 0);
+  // A global-shutter depth sensor behind a rolling colour shutter gives the same depth image.
+  SynthOptions rolling_options = options;
+  rolling_options.real_camera.rolling_shutter_readout = 0.03;
+  rolling_options.real_camera.depth_global_shutter = true;
+  const RenderBuffers rolling = SynthSequence(rolling_options).Render(1, false);
+  EXPECT_EQ(cv::norm(rolling.depth, d.depth, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(rolling.instance, d.instance, cv::NORM_L1), 0.0);  // the masks do shear
   // The distortion changes the image (k1 = 0.2 moves the corners by several pixels).
   EXPECT_GT(cv::norm(d.instance, pinhole.Render(1, false).instance, cv::NORM_L1), 0.0);
 }
@@ -608,6 +627,7 @@ TEST(RealCameraTest, HandheldPresetWritesEveryEffectAndStaysDeterministic) {
   EXPECT_DOUBLE_EQ(file.GetDouble("Synth.RealRollingShutterReadout", 0), 0.025);
   EXPECT_DOUBLE_EQ(file.GetDouble("Synth.RealDepthShiftX", 0), 1.5);
   EXPECT_DOUBLE_EQ(file.GetDouble("Synth.RealDepthShiftY", 0), 1.0);
+  EXPECT_EQ(file.GetInt("Synth.RealDepthGlobalShutter", 0), 1);
   EXPECT_DOUBLE_EQ(file.GetDouble("Camera.k1", 0), 0.262383);
   EXPECT_DOUBLE_EQ(file.GetDouble("Camera.fx", 0), file.GetDouble("Synth.TrueFx", 0) * 1.03);
 }

@@ -89,6 +89,7 @@ RealCameraOptions HandheldCamera() {
   RealCameraOptions options;
   options.blur_exposure = 0.015;
   options.rolling_shutter_readout = 0.025;
+  options.depth_global_shutter = true;
   options.depth_shift_x = 1.5;
   options.depth_shift_y = 1.0;
   options.intrinsics_error = 0.03;

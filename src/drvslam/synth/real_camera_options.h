@@ -25,6 +25,11 @@ struct RealCameraOptions {
   // time (the band's middle). 0 = off.
   double rolling_shutter_readout = 0.0;
   int rolling_shutter_steps = 60;
+  // With rolling shutter: depth is captured all at once at the frame's timestamp (a RealSense's
+  // global-shutter depth sensor) instead of row by row with colour (a Kinect v1), so depth of
+  // anything that moves in the image misregisters against the colour rows. Masks stay with
+  // colour.
+  bool depth_global_shutter = false;
   // Depth misregistration: the depth image is moved by (dx, dy) pixels against colour: depth at
   // (x, y) is the true depth at (x - dx, y - dy). Sub-pixel shifts interpolate depth where the
   // surface is continuous; depth edges move by the shift rounded to whole pixels. Masks stay
@@ -61,9 +66,9 @@ struct RealCameraOptions {
   void Check() const;
 };
 
-// --real-camera: a quickly moved hand-held camera with a rolling-shutter colour sensor:
-// 15 ms exposure, 25 ms readout, depth 1.5 px right and 1 px down of colour, fx and fy stated
-// 3 % too large, TUM fr1's lens distortion.
+// --real-camera: a quickly moved hand-held camera with a rolling-shutter colour sensor and a
+// global-shutter depth sensor (as a RealSense): 15 ms exposure, 25 ms readout, depth 1.5 px right
+// and 1 px down of colour, fx and fy stated 3 % too large, TUM fr1's lens distortion.
 RealCameraOptions HandheldCamera();
 
 // The camera the settings file states: `truth` with the calibration error applied.

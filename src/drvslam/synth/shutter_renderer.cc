@@ -104,6 +104,37 @@ void ShutterRenderer::Render(const TriangleList& statics, const std::vector<Text
                  /*parallel=*/false, out);
     }
   });
+  if (options_.depth_global_shutter) RenderGlobalDepth(statics, textures, scene_at, out);
+}
+
+void ShutterRenderer::RenderGlobalDepth(const TriangleList& statics,
+                                        const std::vector<Texture>& textures,
+                                        const SceneAt& scene_at, RenderBuffers* out) const {
+  SE3 T_cw;
+  TriangleList movers;
+  scene_at(0.0, &T_cw, &movers);
+  RenderBuffers canvas;
+  rasterizer_.Render({&statics, &movers}, textures, T_cw, &canvas);
+  if (distortion_.Identity()) {
+    canvas.depth.copyTo(out->depth);
+    canvas.incidence.copyTo(out->incidence);
+    return;
+  }
+  const CameraOptions& canvas_camera = distortion_.Canvas();
+  cv::parallel_for_(cv::Range(0, sensor_.height), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y) {
+      float* depth_row = out->depth.ptr<float>(y);
+      float* incidence_row = out->incidence.ptr<float>(y);
+      for (int x = 0; x < sensor_.width; ++x) {
+        const int source_x = std::min(static_cast<int>(std::lround(distortion_.CanvasX(x, y))),
+                                      canvas_camera.width - 1);
+        const int source_y = std::min(static_cast<int>(std::lround(distortion_.CanvasY(x, y))),
+                                      canvas_camera.height - 1);
+        depth_row[x] = canvas.depth.ptr<float>(source_y)[source_x];
+        incidence_row[x] = canvas.incidence.ptr<float>(source_y)[source_x];
+      }
+    }
+  });
 }
 
 void ShutterRenderer::RenderBand(int row_begin, int row_end, double offset,

@@ -7,6 +7,8 @@
 //  - each band's colour is the mean of blur_samples renders spread evenly over the exposure
 //    (one render without blur); depth, instance ids and incidence come from the render at the
 //    band's exposure centre, so masks match the middle of the blurred colour;
+//  - with a global-shutter depth sensor, depth and incidence instead come from one render at the
+//    timestamp;
 //  - with distortion, the renders are undistorted ("canvas") images that cover every sensor
 //    ray, and each sensor pixel reads its ray's canvas position: colour bilinearly, depth,
 //    instance ids and incidence from the nearest canvas pixel (no blending across edges).
@@ -56,6 +58,10 @@ class ShutterRenderer {
   void RenderBand(int row_begin, int row_end, double offset, const TriangleList& statics,
                   const std::vector<Texture>& textures, const SceneAt& scene_at, bool parallel,
                   RenderBuffers* out) const;
+
+  // Replaces depth and incidence of `out` with those of one render at the timestamp.
+  void RenderGlobalDepth(const TriangleList& statics, const std::vector<Texture>& textures,
+                         const SceneAt& scene_at, RenderBuffers* out) const;
 
   CameraOptions sensor_;
   RealCameraOptions options_;

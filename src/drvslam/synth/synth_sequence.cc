@@ -262,6 +262,7 @@ std::string SynthSequence::SettingsExtraYaml() const {
   add("RealBlurSamples", Number(r.blur_samples));
   add("RealRollingShutterReadout", Number(r.rolling_shutter_readout));
   add("RealRollingShutterSteps", Number(r.rolling_shutter_steps));
+  add("RealDepthGlobalShutter", flag(r.depth_global_shutter));
   add("RealTimestampRow", Quote("middle"));
   add("RealDepthShiftX", Number(r.depth_shift_x));
   add("RealDepthShiftY", Number(r.depth_shift_y));
