@@ -1,5 +1,6 @@
 // Speed of the synthetic sequence generator: rendering one 640x480 frame (exact geometry, then
-// with the default sensor effects), encoding its three PNGs, and building the scene. The render
+// with the default sensor effects, then with each real-camera effect), encoding its three PNGs,
+// and building the scene. The render
 // benchmarks report process CPU time (all threads) beside wall time, so a loaded machine still
 // shows what a frame costs.
 #include <benchmark/benchmark.h>
@@ -53,6 +54,60 @@ void BM_RenderFrameWithSensor(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RenderFrameWithSensor)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// One frame with one real-camera effect (or all of them, as --real-camera), sensor noise on:
+// the cost of each effect against BM_RenderFrameWithSensor.
+enum class Effect { kNone, kBlur, kRollingShutter, kDepthShift, kDistortion, kHandheld };
+
+void BM_RenderFrameWithEffect(benchmark::State& state) {
+  const Effect effect = static_cast<Effect>(state.range(0));
+  SynthOptions options;
+  options.scenario = "walking_xyz";
+  options.frames = 300;
+  options.opencv_samples = DRVSLAM_OPENCV_DATA_DIR;
+  drvslam::synth::RealCameraOptions& real = options.real_camera;
+  const drvslam::synth::RealCameraOptions handheld = drvslam::synth::HandheldCamera();
+  switch (effect) {
+    case Effect::kNone:
+      state.SetLabel("none");
+      break;
+    case Effect::kBlur:
+      real.blur_exposure = handheld.blur_exposure;
+      state.SetLabel("blur, 5 samples");
+      break;
+    case Effect::kRollingShutter:
+      real.rolling_shutter_readout = handheld.rolling_shutter_readout;
+      state.SetLabel("rolling shutter, 60 bands");
+      break;
+    case Effect::kDepthShift:
+      real.depth_shift_x = handheld.depth_shift_x;
+      real.depth_shift_y = handheld.depth_shift_y;
+      state.SetLabel("depth shift 1.5,1");
+      break;
+    case Effect::kDistortion:
+      real.SetDistortion("fr1");
+      state.SetLabel("distortion fr1");
+      break;
+    case Effect::kHandheld:
+      real = handheld;
+      state.SetLabel("all (--real-camera)");
+      break;
+  }
+  const SynthSequence sequence(options);
+  int frame = 0;
+  for (auto _ : state) {
+    RenderBuffers buffers = sequence.Render(frame);
+    benchmark::DoNotOptimize(buffers.bgr.data);
+    frame = (frame + 7) % sequence.FrameCount();
+  }
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RenderFrameWithEffect)
+    ->DenseRange(0, 5)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
