@@ -1,9 +1,16 @@
 // `drvslam synth`: writes a synthetic dynamic RGB-D sequence with exact ground truth (TUM layout
 // plus masks/, instances.txt and settings.yaml) and prints a short summary.
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
 #include <memory>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "command_registry.h"
 #include "drvslam/core/error.h"
@@ -24,7 +31,29 @@ struct SynthArguments {
   bool no_color_noise = false;
   bool no_exposure = false;
   bool motion_blur = false;
+  // Real-camera effects: --real-camera sets them all, then the flags given override.
+  bool real_camera = false;
+  synth::RealCameraOptions real;
+  std::string depth_shift, principal_point_error, distortion;
+  std::vector<std::pair<CLI::Option*, std::function<void(synth::RealCameraOptions&)>>> overrides;
 };
+
+// "X,Y" to two numbers; throws Error naming the flag.
+std::pair<double, double> ParsePair(const std::string& flag, const std::string& text) {
+  const std::size_t comma = text.find(',');
+  double values[2] = {0.0, 0.0};
+  bool ok = comma != std::string::npos && text.find(',', comma + 1) == std::string::npos;
+  const std::string items[2] = {text.substr(0, comma), ok ? text.substr(comma + 1) : ""};
+  for (int k = 0; k < 2 && ok; ++k) {
+    char* end = nullptr;
+    errno = 0;
+    values[k] = std::strtod(items[k].c_str(), &end);
+    ok = !items[k].empty() && end == items[k].c_str() + items[k].size() && errno == 0 &&
+         std::isfinite(values[k]);
+  }
+  if (!ok) throw Error(flag + " '" + text + "' must be two numbers X,Y (pixels)");
+  return {values[0], values[1]};
+}
 
 void ListScenarios() {
   for (const synth::Scenario& scenario : synth::Scenarios()) {
@@ -65,6 +94,11 @@ void RunSynth(SynthArguments& args) {
   if (args.no_color_noise) sensor.color_noise = false;
   if (args.no_exposure) sensor.exposure = false;
   if (args.motion_blur) sensor.motion_blur = true;
+  synth::RealCameraOptions& real = args.options.real_camera;
+  if (args.real_camera) real = synth::HandheldCamera();
+  for (const auto& [option, apply] : args.overrides) {
+    if (option->count() > 0) apply(real);
+  }
   ProgressBar bar("synth");
   const synth::SynthSummary summary =
       synth::GenerateSequence(args.options, args.out, [&bar](int done, int total) {
@@ -110,6 +144,10 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
   cmd->add_option("--width", o.width, "image width; TUM fr3 intrinsics are scaled to it")
       ->capture_default_str();
   cmd->add_option("--height", o.height, "image height")->capture_default_str();
+  cmd->add_option("--camera-speed", o.camera_speed,
+                  "the camera path runs this many times faster, as a quickly moved hand-held "
+                  "camera (more blur and shear with --real-camera; e.g. 3)")
+      ->capture_default_str();
   cmd->add_flag("--clean", args->clean,
                 "no sensor effects at all: exact colour, exact depth (to the file's 1/5000 m)");
   cmd->add_flag("--no-depth-noise", args->no_depth_noise, "no Kinect-like depth noise");
@@ -124,6 +162,61 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--max-range", o.sensor.max_range, "no depth beyond this distance (m)")
       ->capture_default_str();
+  // Real-camera effects.
+  synth::RealCameraOptions& real = args->real;
+  const synth::RealCameraOptions handheld = synth::HandheldCamera();
+  const auto real_option = [&](const std::string& name, auto* value, const std::string& help,
+                               auto apply) {
+    CLI::Option* option = cmd->add_option(name, *value, help)->capture_default_str();
+    args->overrides.emplace_back(option, apply);
+  };
+  real_option("--blur-exposure", &real.blur_exposure,
+              "motion blur: exposure time in seconds, centred on each row's time, camera and "
+              "actors moving (0 = off; --real-camera: " +
+                  std::to_string(handheld.blur_exposure) + ")",
+              [args](synth::RealCameraOptions& r) { r.blur_exposure = args->real.blur_exposure; });
+  real_option("--blur-samples", &real.blur_samples,
+              "renders averaged per blurred frame (odd: the middle one gives depth and masks)",
+              [args](synth::RealCameraOptions& r) { r.blur_samples = args->real.blur_samples; });
+  real_option("--rolling-shutter", &real.rolling_shutter_readout,
+              "rolling shutter: readout time in seconds from the top row to the bottom one; the "
+              "timestamp and ground truth belong to the image's middle (0 = off; --real-camera: " +
+                  std::to_string(handheld.rolling_shutter_readout) + ")",
+              [args](synth::RealCameraOptions& r) {
+                r.rolling_shutter_readout = args->real.rolling_shutter_readout;
+              });
+  real_option("--rolling-shutter-steps", &real.rolling_shutter_steps,
+              "bands of rows that share one exposure time", [args](synth::RealCameraOptions& r) {
+                r.rolling_shutter_steps = args->real.rolling_shutter_steps;
+              });
+  real_option("--depth-shift", &args->depth_shift,
+              "DX,DY: depth misregistered against colour by this many pixels (sub-pixel "
+              "allowed; depth at (x, y) is the true depth at (x - DX, y - DY); masks stay with "
+              "colour; --real-camera: 1.5,1)",
+              [args](synth::RealCameraOptions& r) {
+                std::tie(r.depth_shift_x, r.depth_shift_y) =
+                    ParsePair("--depth-shift", args->depth_shift);
+              });
+  real_option(
+      "--intrinsics-error", &real.intrinsics_error,
+      "settings.yaml states fx, fy (and bf) this fraction larger than the truth "
+      "(0.03 = 3 %; --real-camera: 0.03); Synth.TrueFx.. keep the truth",
+      [args](synth::RealCameraOptions& r) { r.intrinsics_error = args->real.intrinsics_error; });
+  real_option("--principal-point-error", &args->principal_point_error,
+              "DX,DY: settings.yaml states cx, cy moved by this many pixels",
+              [args](synth::RealCameraOptions& r) {
+                std::tie(r.principal_point_error_x, r.principal_point_error_y) =
+                    ParsePair("--principal-point-error", args->principal_point_error);
+              });
+  real_option("--distortion", &args->distortion,
+              "lens distortion k1,k2,p1,p2,k3 (OpenCV radial-tangential; missing ones are 0) or "
+              "fr1 / fr2 (the TUM calibrations): images are rendered through it and "
+              "settings.yaml states it as Camera.k1..k3 (--real-camera: fr1)",
+              [args](synth::RealCameraOptions& r) { r.SetDistortion(args->distortion); });
+  cmd->add_flag("--real-camera", args->real_camera,
+                "a quickly moved hand-held real camera: --blur-exposure 0.015 --rolling-shutter "
+                "0.025 --depth-shift 1.5,1 --intrinsics-error 0.03 --distortion fr1; the flags "
+                "above, when given, override these");
   cmd->add_flag("--list", args->list, "list the scenarios and exit");
   cmd->callback([args] { RunSynth(*args); });
 });

@@ -97,11 +97,59 @@ TEST(SynthCliTest, BadInputExitsWithStatus2) {
   EXPECT_EQ(ReadFileBytes(folder / "precious.txt"), "keep me");
 }
 
+TEST(SynthCliTest, RealCameraPresetIsRecordedAndFlagsOverrideIt) {
+  TestFolder folder("cli_real");
+  const std::string out = folder / "handheld";
+  const Result result = RunCli(
+      "synth --scenario static_xyz --frames 4 --width 160 --height 120 --real-camera "
+      "--blur-exposure 0 --depth-shift -1,0.5 --camera-speed 2 --out " +
+      out);
+  ASSERT_EQ(result.status, 0) << result.output;
+  const std::string settings = ReadFileBytes(out + "/settings.yaml");
+  for (const char* line :
+       {"Synth.RealBlurExposure: 0.0\n", "Synth.RealRollingShutterReadout: 0.025\n",
+        "Synth.RealDepthShiftX: -1.0\n", "Synth.RealDepthShiftY: 0.5\n",
+        "Synth.RealIntrinsicsError: 0.03\n", "Camera.k1: 0.262383\n", "Camera.k3: 1.163314\n",
+        "Synth.CameraSpeed: 2.0\n"}) {
+    EXPECT_NE(settings.find(line), std::string::npos) << line << settings;
+  }
+  // dense-eval rebuilds the sequence from settings.yaml, camera speed included, and checks its
+  // poses against groundtruth.txt.
+  const Result evaluated = RunCli("dense-eval --dataset " + out);
+  EXPECT_EQ(evaluated.status, 0) << evaluated.output;
+}
+
+TEST(SynthCliTest, BadRealCameraValuesExitWithStatus2) {
+  TestFolder folder("cli_real_bad");
+  const std::string base = "synth --scenario static_xyz --frames 2 --width 160 --height 120 ";
+  const struct {
+    std::string arguments;
+    std::string expected;
+  } cases[] = {
+      {"--distortion 0.1,x", "error: --distortion '0.1,x'"},
+      {"--distortion -3", "cannot be inverted"},
+      {"--depth-shift 3", "error: --depth-shift '3' must be two numbers"},
+      {"--principal-point-error 1,2,3", "error: --principal-point-error"},
+      {"--blur-exposure 1", "error: --blur-exposure 1"},
+      {"--rolling-shutter -0.1", "error: --rolling-shutter -0.1"},
+      {"--camera-speed 0", "error: --camera-speed"},
+  };
+  for (const auto& c : cases) {
+    const Result result = RunCli(base + c.arguments + " --out " + folder / "x");
+    EXPECT_EQ(result.status, 2) << c.arguments << "\n" << result.output;
+    EXPECT_NE(result.output.find(c.expected), std::string::npos) << c.arguments << "\n"
+                                                                 << result.output;
+  }
+}
+
 TEST(SynthCliTest, HelpAndListDocumentTheOptions) {
   const Result help = RunCli("synth --help");
   EXPECT_EQ(help.status, 0);
-  for (const char* option : {"--scenario", "--frames", "--seed", "--trajectory", "--textures",
-                             "--actors", "--out", "--billboards", "--clean"}) {
+  for (const char* option :
+       {"--scenario", "--frames", "--seed", "--trajectory", "--textures", "--actors", "--out",
+        "--billboards", "--clean", "--blur-exposure", "--rolling-shutter", "--depth-shift",
+        "--intrinsics-error", "--principal-point-error", "--distortion", "--real-camera",
+        "--camera-speed"}) {
     EXPECT_NE(help.output.find(option), std::string::npos) << option;
   }
   const Result list = RunCli("synth --list");

@@ -195,6 +195,7 @@ synth::SynthOptions SynthOptionsFromSettings(const SettingsFile& file) {
   o.width = file.GetInt("Camera.width", o.width);
   o.height = file.GetInt("Camera.height", o.height);
   o.fps = file.GetDouble("Camera.fps", o.fps);
+  o.camera_speed = file.GetDouble("Synth.CameraSpeed", o.camera_speed);
   o.procedural_textures = true;
   return CheckedOptions(file.Path(), o);
 }

@@ -601,6 +601,28 @@ void ActorSet::AppendTriangles(int frame, TriangleList* out) const {
   }
 }
 
+void ActorSet::AppendTrianglesAt(double frame_position, TriangleList* out) const {
+  if (Count() == 0) return;
+  const double base = std::floor(frame_position);
+  if (base == frame_position && base >= -1.0 && base < frame_count_) {
+    AppendTriangles(static_cast<int>(base), out);
+    return;
+  }
+  // Simulated states cover frames -1 .. frame_count_ - 1.
+  const int a = static_cast<int>(std::clamp(base, -1.0, frame_count_ - 2.0));
+  const double weight = frame_position - a;
+  for (int k = 0; k < Count(); ++k) {
+    TriangleList triangles = Triangles(k, a);
+    const TriangleList next = Triangles(k, a + 1);
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        triangles[i].p[c] += weight * (next[i].p[c] - triangles[i].p[c]);
+      }
+    }
+    out->insert(out->end(), triangles.begin(), triangles.end());
+  }
+}
+
 std::vector<SynthInstance> ActorSet::Instances() const {
   std::vector<SynthInstance> instances;
   for (const Actor& a : actors_) instances.push_back({a.instance_id, a.class_name, a.coco_id});

@@ -65,6 +65,12 @@ class ActorSet {
   TriangleList Triangles(int actor, int frame) const;
   // Appends every actor's geometry at `frame`.
   void AppendTriangles(int frame, TriangleList* out) const;
+  // Appends every actor's geometry at a fractional frame position (frame + a fraction of the
+  // frame period), for renders between frames (motion blur, rolling shutter): each corner moves
+  // linearly between the two nearest simulated frames, and past the ends of the simulation it
+  // continues the first or last frame-to-frame motion. An integer position gives exactly
+  // AppendTriangles.
+  void AppendTrianglesAt(double frame_position, TriangleList* out) const;
   // Largest corner displacement since the previous frame, and whether it exceeds
   // kMovingThreshold.
   double Displacement(int actor, int frame) const { return displacement_[actor][frame]; }

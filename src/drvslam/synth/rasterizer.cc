@@ -98,8 +98,19 @@ Rasterizer::Rasterizer(const CameraOptions& camera, const RasterOptions& options
 void Rasterizer::Render(const std::vector<const TriangleList*>& lists,
                         const std::vector<Texture>& textures, const SE3& T_cw,
                         RenderBuffers* out) const {
+  RenderRows(lists, textures, T_cw, 0, camera_.height, out);
+}
+
+void Rasterizer::RenderRows(const std::vector<const TriangleList*>& lists,
+                            const std::vector<Texture>& textures, const SE3& T_cw, int row_begin,
+                            int row_end, RenderBuffers* out, bool parallel) const {
   const int width = camera_.width;
   const int height = camera_.height;
+  if (row_begin < 0 || row_end > height || row_begin >= row_end) {
+    throw Error("rasterizer: rows " + std::to_string(row_begin) + ".." + std::to_string(row_end) +
+                " are not a range inside 0.." + std::to_string(height));
+  }
+  const int rows = row_end - row_begin;
   const double fx = camera_.fx, fy = camera_.fy, cx = camera_.cx, cy = camera_.cy;
   const Eigen::Matrix3d R = T_cw.Rotation();
   const Eigen::Vector3d t = T_cw.Translation();
@@ -145,9 +156,10 @@ void Rasterizer::Render(const std::vector<const TriangleList*>& lists,
         s.x1 = std::min(
             width - 1,
             static_cast<int>(std::floor(std::min(std::max({sx[0], sx[1], sx[2]}) + 1e-6, 1e9))));
-        s.y0 = std::max(0, static_cast<int>(std::ceil(std::min({sy[0], sy[1], sy[2]}) - 1e-6)));
+        s.y0 = std::max(row_begin,
+                        static_cast<int>(std::ceil(std::min({sy[0], sy[1], sy[2]}) - 1e-6)));
         s.y1 = std::min(
-            height - 1,
+            row_end - 1,
             static_cast<int>(std::floor(std::min(std::max({sy[0], sy[1], sy[2]}) + 1e-6, 1e9))));
         if (s.x0 > s.x1 || s.y0 > s.y1) continue;
         for (int k = 0; k < 3; ++k) {
@@ -176,112 +188,116 @@ void Rasterizer::Render(const std::vector<const TriangleList*>& lists,
     }
   }
 
-  out->bgr.create(height, width, CV_8UC3);
-  out->depth.create(height, width, CV_32FC1);
-  out->instance.create(height, width, CV_16UC1);
-  out->incidence.create(height, width, CV_32FC1);
-  std::vector<double> nearest(static_cast<std::size_t>(width) * height);
-  std::vector<int> owner(static_cast<std::size_t>(width) * height);
-  const int rows_per_band = (height + kBands - 1) / kBands;
+  out->bgr.create(rows, width, CV_8UC3);
+  out->depth.create(rows, width, CV_32FC1);
+  out->instance.create(rows, width, CV_16UC1);
+  out->incidence.create(rows, width, CV_32FC1);
+  // Indexed by image row minus row_begin.
+  std::vector<double> nearest(static_cast<std::size_t>(width) * rows);
+  std::vector<int> owner(static_cast<std::size_t>(width) * rows);
+  const int rows_per_band = (rows + kBands - 1) / kBands;
 
-  cv::parallel_for_(
-      cv::Range(0, kBands),
-      [&](const cv::Range& range) {
-        for (int band = range.start; band < range.end; ++band) {
-          const int row0 = band * rows_per_band;
-          const int row1 = std::min(height, row0 + rows_per_band);
-          if (row0 >= row1) continue;
-          std::fill(nearest.begin() + static_cast<std::ptrdiff_t>(row0) * width,
-                    nearest.begin() + static_cast<std::ptrdiff_t>(row1) * width, 0.0);
-          std::fill(owner.begin() + static_cast<std::ptrdiff_t>(row0) * width,
-                    owner.begin() + static_cast<std::ptrdiff_t>(row1) * width, -1);
+  const auto draw_bands = [&](const cv::Range& range) {
+    for (int band = range.start; band < range.end; ++band) {
+      const int row0 = row_begin + band * rows_per_band;
+      const int row1 = std::min(row_end, row0 + rows_per_band);
+      if (row0 >= row1) continue;
+      std::fill(nearest.begin() + static_cast<std::ptrdiff_t>(row0 - row_begin) * width,
+                nearest.begin() + static_cast<std::ptrdiff_t>(row1 - row_begin) * width, 0.0);
+      std::fill(owner.begin() + static_cast<std::ptrdiff_t>(row0 - row_begin) * width,
+                owner.begin() + static_cast<std::ptrdiff_t>(row1 - row_begin) * width, -1);
 
-          // Visibility: the largest 1/z (nearest surface) at each pixel centre.
-          for (int index = 0; index < static_cast<int>(screen.size()); ++index) {
-            const ScreenTriangle& s = screen[index];
-            const int y_begin = std::max(s.y0, row0);
-            const int y_end = std::min(s.y1, row1 - 1);
-            for (int y = y_begin; y <= y_end; ++y) {
-              // Span of x where all three barycentric coordinates are >= -slack on this row.
-              double lo = s.x0, hi = s.x1;
-              bool empty = false;
-              for (int k = 0; k < 3 && !empty; ++k) {
-                const double a = s.bary[k][0];
-                const double rest = s.bary[k][1] * y + s.bary[k][2] + kEdgeSlack;
-                if (a > 0.0) {
-                  lo = std::max(lo, -rest / a);
-                } else if (a < 0.0) {
-                  hi = std::min(hi, -rest / a);
-                } else if (rest < 0.0) {
-                  empty = true;
-                }
-              }
-              if (empty || !(lo <= hi)) continue;
-              const int x_begin = static_cast<int>(std::ceil(lo));
-              const int x_end = static_cast<int>(std::floor(hi));
-              double* depth_row = nearest.data() + static_cast<std::ptrdiff_t>(y) * width;
-              int* owner_row = owner.data() + static_cast<std::ptrdiff_t>(y) * width;
-              for (int x = x_begin; x <= x_end; ++x) {
-                const double q = Plane(s.inv_z, x, y);
-                if (!(q > depth_row[x])) continue;
-                if (s.alpha_test) {
-                  const float u = static_cast<float>(Plane(s.u_over_z, x, y) / q);
-                  const float v = static_cast<float>(Plane(s.v_over_z, x, y) / q);
-                  if (!s.texture->Opaque(u, v)) continue;
-                }
-                depth_row[x] = q;
-                owner_row[x] = index;
-              }
+      // Visibility: the largest 1/z (nearest surface) at each pixel centre.
+      for (int index = 0; index < static_cast<int>(screen.size()); ++index) {
+        const ScreenTriangle& s = screen[index];
+        const int y_begin = std::max(s.y0, row0);
+        const int y_end = std::min(s.y1, row1 - 1);
+        for (int y = y_begin; y <= y_end; ++y) {
+          // Span of x where all three barycentric coordinates are >= -slack on this row.
+          double lo = s.x0, hi = s.x1;
+          bool empty = false;
+          for (int k = 0; k < 3 && !empty; ++k) {
+            const double a = s.bary[k][0];
+            const double rest = s.bary[k][1] * y + s.bary[k][2] + kEdgeSlack;
+            if (a > 0.0) {
+              lo = std::max(lo, -rest / a);
+            } else if (a < 0.0) {
+              hi = std::min(hi, -rest / a);
+            } else if (rest < 0.0) {
+              empty = true;
             }
           }
-
-          // Shading of the visible surface only.
-          for (int y = row0; y < row1; ++y) {
-            const double* depth_row = nearest.data() + static_cast<std::ptrdiff_t>(y) * width;
-            const int* owner_row = owner.data() + static_cast<std::ptrdiff_t>(y) * width;
-            uint8_t* bgr_row = out->bgr.ptr<uint8_t>(y);
-            float* z_row = out->depth.ptr<float>(y);
-            uint16_t* id_row = out->instance.ptr<uint16_t>(y);
-            float* incidence_row = out->incidence.ptr<float>(y);
-            const float ray_y = static_cast<float>((y - cy) / fy);
-            for (int x = 0; x < width; ++x) {
-              const int index = owner_row[x];
-              if (index < 0) {
-                bgr_row[3 * x] = bgr_row[3 * x + 1] = bgr_row[3 * x + 2] = 0;
-                z_row[x] = 0.0f;
-                id_row[x] = 0;
-                incidence_row[x] = 0.0f;
-                continue;
-              }
-              const ScreenTriangle& s = screen[index];
-              const double q = depth_row[x];
-              const double inv_q = 1.0 / q;
-              const double u = Plane(s.u_over_z, x, y) * inv_q;
-              const double v = Plane(s.v_over_z, x, y) * inv_q;
-              // Texture footprint of one pixel, from the derivatives of u = (u/z) / (1/z).
-              const double du_dx = (s.u_over_z[0] - u * s.inv_z[0]) * inv_q * s.texture_w;
-              const double du_dy = (s.u_over_z[1] - u * s.inv_z[1]) * inv_q * s.texture_w;
-              const double dv_dx = (s.v_over_z[0] - v * s.inv_z[0]) * inv_q * s.texture_h;
-              const double dv_dy = (s.v_over_z[1] - v * s.inv_z[1]) * inv_q * s.texture_h;
-              const double footprint =
-                  std::max(du_dx * du_dx + dv_dx * dv_dx, du_dy * du_dy + dv_dy * dv_dy);
-              const float lod = 0.5f * FastLog2(static_cast<float>(footprint));
-              float colour[3];
-              s.texture->Sample(static_cast<float>(u), static_cast<float>(v), lod, colour);
-              for (int c = 0; c < 3; ++c) {
-                const float value = colour[c] * s.shade + 0.5f;
-                bgr_row[3 * x + c] = static_cast<uint8_t>(std::min(255.0f, std::max(0.0f, value)));
-              }
-              z_row[x] = static_cast<float>(inv_q);
-              id_row[x] = s.instance;
-              const float ray_x = static_cast<float>((x - cx) / fx);
-              const float dot = s.normal[0] * ray_x + s.normal[1] * ray_y + s.normal[2];
-              incidence_row[x] = std::fabs(dot) / std::sqrt(ray_x * ray_x + ray_y * ray_y + 1.0f);
+          if (empty || !(lo <= hi)) continue;
+          const int x_begin = static_cast<int>(std::ceil(lo));
+          const int x_end = static_cast<int>(std::floor(hi));
+          double* depth_row = nearest.data() + static_cast<std::ptrdiff_t>(y - row_begin) * width;
+          int* owner_row = owner.data() + static_cast<std::ptrdiff_t>(y - row_begin) * width;
+          for (int x = x_begin; x <= x_end; ++x) {
+            const double q = Plane(s.inv_z, x, y);
+            if (!(q > depth_row[x])) continue;
+            if (s.alpha_test) {
+              const float u = static_cast<float>(Plane(s.u_over_z, x, y) / q);
+              const float v = static_cast<float>(Plane(s.v_over_z, x, y) / q);
+              if (!s.texture->Opaque(u, v)) continue;
             }
+            depth_row[x] = q;
+            owner_row[x] = index;
           }
         }
-      },
-      kBands);
+      }
+
+      // Shading of the visible surface only.
+      for (int y = row0; y < row1; ++y) {
+        const double* depth_row =
+            nearest.data() + static_cast<std::ptrdiff_t>(y - row_begin) * width;
+        const int* owner_row = owner.data() + static_cast<std::ptrdiff_t>(y - row_begin) * width;
+        uint8_t* bgr_row = out->bgr.ptr<uint8_t>(y - row_begin);
+        float* z_row = out->depth.ptr<float>(y - row_begin);
+        uint16_t* id_row = out->instance.ptr<uint16_t>(y - row_begin);
+        float* incidence_row = out->incidence.ptr<float>(y - row_begin);
+        const float ray_y = static_cast<float>((y - cy) / fy);
+        for (int x = 0; x < width; ++x) {
+          const int index = owner_row[x];
+          if (index < 0) {
+            bgr_row[3 * x] = bgr_row[3 * x + 1] = bgr_row[3 * x + 2] = 0;
+            z_row[x] = 0.0f;
+            id_row[x] = 0;
+            incidence_row[x] = 0.0f;
+            continue;
+          }
+          const ScreenTriangle& s = screen[index];
+          const double q = depth_row[x];
+          const double inv_q = 1.0 / q;
+          const double u = Plane(s.u_over_z, x, y) * inv_q;
+          const double v = Plane(s.v_over_z, x, y) * inv_q;
+          // Texture footprint of one pixel, from the derivatives of u = (u/z) / (1/z).
+          const double du_dx = (s.u_over_z[0] - u * s.inv_z[0]) * inv_q * s.texture_w;
+          const double du_dy = (s.u_over_z[1] - u * s.inv_z[1]) * inv_q * s.texture_w;
+          const double dv_dx = (s.v_over_z[0] - v * s.inv_z[0]) * inv_q * s.texture_h;
+          const double dv_dy = (s.v_over_z[1] - v * s.inv_z[1]) * inv_q * s.texture_h;
+          const double footprint =
+              std::max(du_dx * du_dx + dv_dx * dv_dx, du_dy * du_dy + dv_dy * dv_dy);
+          const float lod = 0.5f * FastLog2(static_cast<float>(footprint));
+          float colour[3];
+          s.texture->Sample(static_cast<float>(u), static_cast<float>(v), lod, colour);
+          for (int c = 0; c < 3; ++c) {
+            const float value = colour[c] * s.shade + 0.5f;
+            bgr_row[3 * x + c] = static_cast<uint8_t>(std::min(255.0f, std::max(0.0f, value)));
+          }
+          z_row[x] = static_cast<float>(inv_q);
+          id_row[x] = s.instance;
+          const float ray_x = static_cast<float>((x - cx) / fx);
+          const float dot = s.normal[0] * ray_x + s.normal[1] * ray_y + s.normal[2];
+          incidence_row[x] = std::fabs(dot) / std::sqrt(ray_x * ray_x + ray_y * ray_y + 1.0f);
+        }
+      }
+    }
+  };
+  if (parallel) {
+    cv::parallel_for_(cv::Range(0, kBands), draw_bands, kBands);
+  } else {
+    draw_bands(cv::Range(0, kBands));
+  }
 }
 
 }  // namespace drvslam::synth

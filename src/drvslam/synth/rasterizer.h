@@ -47,6 +47,13 @@ class Rasterizer {
   // Error when a triangle names a texture that does not exist.
   void Render(const std::vector<const TriangleList*>& lists, const std::vector<Texture>& textures,
               const SE3& T_cw, RenderBuffers* out) const;
+  // Draws only image rows [row_begin, row_end): `out` gets row_end - row_begin rows, its row 0
+  // being image row row_begin, with exactly the pixels Render gives there. With `parallel`
+  // false everything runs on the calling thread (for callers that draw many row ranges in
+  // parallel, e.g. a rolling shutter's bands).
+  void RenderRows(const std::vector<const TriangleList*>& lists,
+                  const std::vector<Texture>& textures, const SE3& T_cw, int row_begin, int row_end,
+                  RenderBuffers* out, bool parallel = true) const;
 
   const CameraOptions& Camera() const { return camera_; }
 

@@ -56,10 +56,14 @@ void SynthOptions::Check() const {
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0)) {
     throw Error("--fps " + std::to_string(fps) + " must be in (0, 1000]");
   }
+  if (!(std::isfinite(camera_speed) && camera_speed > 0.0 && camera_speed <= 20.0)) {
+    throw Error("--camera-speed " + std::to_string(camera_speed) + " must be in (0, 20]");
+  }
   if (!(std::isfinite(start_stamp) && start_stamp >= 0.0)) {
     throw Error("start stamp must be a non-negative number");
   }
   sensor.Check();
+  real_camera.Check();
 }
 
 CameraOptions SynthOptions::Camera() const {
@@ -74,7 +78,16 @@ CameraOptions SynthOptions::Camera() const {
   camera.width = width;
   camera.height = height;
   camera.fps = fps;
+  camera.k1 = real_camera.k1;
+  camera.k2 = real_camera.k2;
+  camera.p1 = real_camera.p1;
+  camera.p2 = real_camera.p2;
+  camera.k3 = real_camera.k3;
   return camera;
+}
+
+CameraOptions SynthOptions::StatedCamera() const {
+  return synth::StatedCamera(Camera(), real_camera);
 }
 
 }  // namespace drvslam::synth

@@ -7,6 +7,7 @@
 
 #include "drvslam/core/camera.h"
 #include "drvslam/synth/photo_library.h"
+#include "drvslam/synth/real_camera_options.h"
 #include "drvslam/synth/sensor_model.h"
 
 namespace drvslam::synth {
@@ -38,14 +39,23 @@ struct SynthOptions {
   int width = 640;                     // TUM fr3 intrinsics are scaled to this size
   int height = 480;
   double fps = 30.0;
+  // The camera path runs this many times faster (a quickly moved hand-held camera: more motion
+  // blur and rolling-shutter shear). A replayed recording then covers fewer frames.
+  double camera_speed = 1.0;
   double start_stamp = kDefaultStartStamp;
   SensorOptions sensor;
+  // Motion blur, rolling shutter, depth misregistration, calibration error, lens distortion:
+  // all off by default.
+  RealCameraOptions real_camera;
   std::string opencv_samples = kOpenCvDocDataFolder;
 
   // Throws Error naming the option (as its command-line flag) and the bad value.
   void Check() const;
-  // Camera.* of the sequence: TUM fr3 intrinsics scaled to width x height, no distortion.
+  // The camera the images are rendered with: TUM fr3 intrinsics scaled to width x height, and
+  // real_camera's lens distortion (none by default).
   CameraOptions Camera() const;
+  // The camera settings.yaml states: Camera() with real_camera's calibration error.
+  CameraOptions StatedCamera() const;
 };
 
 }  // namespace drvslam::synth

@@ -9,6 +9,7 @@
 #include "drvslam/core/coco_classes.h"
 #include "drvslam/core/error.h"
 #include "drvslam/synth/billboard.h"
+#include "drvslam/synth/depth_shift.h"
 #include "drvslam/synth/photo_library.h"
 #include "drvslam/synth/random.h"
 #include "drvslam/synth/texture_bank.h"
@@ -57,7 +58,7 @@ SynthSequence::SynthSequence(const SynthOptions& options)
     : options_(Checked(options)),
       scenario_(&FindScenario(options.scenario)),
       camera_(options.Camera()),
-      rasterizer_(options.Camera()),
+      shutter_(options.Camera(), options.real_camera),
       sensor_(options.sensor, options.Camera(), SubSeed(options.seed, RandomStream::kSensor)) {
   const ViewAnchor anchor;
   int frames = options_.frames < 0 ? kDefaultFrames : options_.frames;
@@ -69,7 +70,9 @@ SynthSequence::SynthSequence(const SynthOptions& options)
     }
     path_ = CameraPath::Replay(recorded, anchor);
     start = path_.RecordedStart();
-    const int available = static_cast<int>(std::floor(path_.Duration() * options_.fps + 1e-9)) + 1;
+    const int available = static_cast<int>(std::floor(
+                              path_.Duration() / options_.camera_speed * options_.fps + 1e-9)) +
+                          1;
     if (options_.frames < 0) {
       frames = available;
     } else if (options_.frames > available) {
@@ -94,7 +97,7 @@ SynthSequence::SynthSequence(const SynthOptions& options)
   for (int f = 0; f < frames; ++f) {
     times_.push_back(f / options_.fps);
     stamps_.push_back(start + times_.back());
-    poses_.push_back(path_.PoseAt(times_.back()));
+    poses_.push_back(path_.PoseAt(options_.camera_speed * times_.back()));
   }
   std::vector<Eigen::Vector3d> centres;
   for (const SE3& pose : poses_) centres.push_back(pose.Translation());
@@ -156,18 +159,35 @@ RenderBuffers SynthSequence::Render(int frame, bool apply_sensor) const {
     throw Error("synth: frame " + std::to_string(frame) + " is outside 0.." +
                 std::to_string(FrameCount() - 1));
   }
-  TriangleList movers;
-  actors_.AppendTriangles(frame, &movers);
   RenderBuffers buffers;
-  const SE3 T_cw = poses_[frame].Inverse();
-  rasterizer_.Render({&scene_.triangles, &movers}, textures_, T_cw, &buffers);
+  shutter_.Render(
+      scene_.triangles, textures_,
+      [this, frame](double offset, SE3* T_cw, TriangleList* movers) {
+        *T_cw = PoseAt(frame, offset).Inverse();
+        AppendMoversAt(frame, offset, movers);
+      },
+      &buffers);
+  const RealCameraOptions& real = options_.real_camera;
+  if (real.DepthShift()) ShiftDepth(real.depth_shift_x, real.depth_shift_y, &buffers);
   if (apply_sensor) {
     const double t = times_[frame];
-    const SE3 T_start_now =
-        path_.PoseAt(t - options_.sensor.exposure_time).Inverse() * poses_[frame];
+    const SE3 T_start_now = PoseAt(frame, -options_.sensor.exposure_time).Inverse() * poses_[frame];
     sensor_.Apply(frame, t, T_start_now, &buffers);
   }
   return buffers;
+}
+
+SE3 SynthSequence::PoseAt(int frame, double offset) const {
+  return offset == 0.0 ? poses_[frame]
+                       : path_.PoseAt(options_.camera_speed * (times_[frame] + offset));
+}
+
+void SynthSequence::AppendMoversAt(int frame, double offset, TriangleList* movers) const {
+  if (offset == 0.0) {
+    actors_.AppendTriangles(frame, movers);
+  } else {
+    actors_.AppendTrianglesAt(frame + offset * options_.fps, movers);
+  }
 }
 
 double SynthSequence::MoverCoverage(const cv::Mat& instance) const {
@@ -183,7 +203,7 @@ double SynthSequence::MoverCoverage(const cv::Mat& instance) const {
 
 Settings SynthSequence::MakeSettings() const {
   Settings settings;
-  settings.camera = camera_;
+  settings.camera = options_.real_camera.CalibrationError() ? options_.StatedCamera() : camera_;
   settings.depth.depth_map_factor = options_.sensor.depth_factor;
   return settings;
 }
@@ -230,6 +250,33 @@ std::string SynthSequence::SettingsExtraYaml() const {
   add("MotionBlur", flag(s.motion_blur));
   add("ExposureTime", Number(s.exposure_time));
   add("BlurSamples", Number(s.blur_samples));
+  // Written only when changed, as the real-camera keys below.
+  if (options_.camera_speed != 1.0) add("CameraSpeed", Number(options_.camera_speed));
+  const RealCameraOptions& r = options_.real_camera;
+  if (!r.Any()) return yaml;  // sequences without them stay byte-identical to earlier ones
+  yaml +=
+      "# Real-camera effects. Timestamps and ground truth belong to the middle of the image\n"
+      "# (rolling shutter: row r is exposed at t + ((r + 0.5) / height - 0.5) * readout).\n"
+      "# Camera.* above states the calibration with its error; the truth is Synth.True*.\n";
+  add("RealBlurExposure", Number(r.blur_exposure));
+  add("RealBlurSamples", Number(r.blur_samples));
+  add("RealRollingShutterReadout", Number(r.rolling_shutter_readout));
+  add("RealRollingShutterSteps", Number(r.rolling_shutter_steps));
+  add("RealTimestampRow", Quote("middle"));
+  add("RealDepthShiftX", Number(r.depth_shift_x));
+  add("RealDepthShiftY", Number(r.depth_shift_y));
+  add("RealIntrinsicsError", Number(r.intrinsics_error));
+  add("RealPrincipalPointErrorX", Number(r.principal_point_error_x));
+  add("RealPrincipalPointErrorY", Number(r.principal_point_error_y));
+  add("TrueFx", Number(camera_.fx));
+  add("TrueFy", Number(camera_.fy));
+  add("TrueCx", Number(camera_.cx));
+  add("TrueCy", Number(camera_.cy));
+  add("TrueK1", Number(camera_.k1));
+  add("TrueK2", Number(camera_.k2));
+  add("TrueP1", Number(camera_.p1));
+  add("TrueP2", Number(camera_.p2));
+  add("TrueK3", Number(camera_.k3));
   return yaml;
 }
 

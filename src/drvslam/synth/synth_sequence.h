@@ -19,6 +19,7 @@
 #include "drvslam/synth/scenario.h"
 #include "drvslam/synth/scene_builder.h"
 #include "drvslam/synth/sensor_model.h"
+#include "drvslam/synth/shutter_renderer.h"
 #include "drvslam/synth/synth_options.h"
 #include "drvslam/synth/texture.h"
 
@@ -54,13 +55,19 @@ class SynthSequence {
   std::vector<bool> MovingFlags(int frame) const;
   InstancesFile MakeInstancesFile() const;
 
-  // Renders a frame: exact geometry, then (unless apply_sensor is false) the sensor effects
-  // of the options. Thread-safe.
+  // Renders a frame: exact geometry as the real-camera options expose it (rolling shutter,
+  // motion blur, lens distortion, depth misregistration), then (unless apply_sensor is false)
+  // the sensor's noise and holes. Thread-safe.
   RenderBuffers Render(int frame, bool apply_sensor = true) const;
+  // The camera pose (T_wc) and the actors `offset` seconds after frame `frame`'s timestamp.
+  SE3 PoseAt(int frame, double offset) const;
+  void AppendMoversAt(int frame, double offset, TriangleList* movers) const;
+  const ShutterRenderer& Shutter() const { return shutter_; }
   // Share of the image covered by actors in an instance image.
   double MoverCoverage(const cv::Mat& instance) const;
 
-  // Camera, depth and ORB settings for `drvslam run`, and the scenario as "Synth.*" keys.
+  // Camera (as stated, with the calibration error), depth and ORB settings for `drvslam run`,
+  // and the scenario as "Synth.*" keys (with the real-camera effects when any is on).
   Settings MakeSettings() const;
   std::string SettingsExtraYaml() const;
 
@@ -77,7 +84,7 @@ class SynthSequence {
   ActorSet actors_;
   std::vector<Texture> textures_;
   std::string texture_source_;
-  Rasterizer rasterizer_;
+  ShutterRenderer shutter_;
   SensorModel sensor_;
 };
 
