@@ -10,7 +10,8 @@
 //  - when more than Dynamic.maxUnlabelledShare of the tested tracks outside the masks move, the
 //    camera model failed: the paper adapts removal to how much of the image movers cover, and a
 //    "mover" covering most of a scene with no semantic reason to move is the camera's error.
-// What passes is still only a candidate: motion_persistence.h wants it in consecutive frames.
+// In a frame whose thresholds were raised, what passes is still only a candidate:
+// motion_persistence.h wants it in Dynamic.unlabelledFrames consecutive frames.
 #pragma once
 
 #include <opencv2/core.hpp>
