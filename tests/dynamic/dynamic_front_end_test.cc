@@ -260,7 +260,8 @@ TEST_F(DynamicFrontEndTest, WritesDebugPicturesAndObjectRows) {
 }
 
 TEST_F(DynamicFrontEndTest, WithoutASegmenterMovingThingsAreFoundByGeometry) {
-  // Nobody names the walking "person": its moving points form an unlabelled region.
+  // Nobody names the walking "person": its moving points form an unlabelled region. The
+  // rendered scene fits its model tightly, so the region goes at once (no frame of waiting).
   const Sequence sequence = Render(5, false, nullptr, [](int f) { return -0.05 * f; });
   DynamicFrontEndConfig config;
   config.sequential = true;
@@ -270,6 +271,10 @@ TEST_F(DynamicFrontEndTest, WithoutASegmenterMovingThingsAreFoundByGeometry) {
     const Frame full = Extract(sequence, f);
     const Frame kept = stage.Filter(Frame(full), sequence.bgr[f], sequence.images[f].depth);
     if (f == 0) continue;
+    const DynamicFrameReport& report = stage.LastReport();
+    EXPECT_TRUE(report.unlabelled_weighed);
+    EXPECT_EQ(report.unlabelled_evidence.verdict, UnlabelledVerdict::kTrusted) << "frame " << f;
+    EXPECT_EQ(report.unlabelled_pending, 0) << "frame " << f;
     const int before = CountOn(full, sequence.images[f].labels, 3);
     const int after = CountOn(kept, sequence.images[f].labels, 3);
     EXPECT_LE(after, before / 3) << "frame " << f << ": " << after << " of " << before;
@@ -441,6 +446,34 @@ TEST_F(DynamicFrontEndTest, AWalkingPersonKeepsItsIdThroughAThreeFrameDetectionG
     }
     EXPECT_EQ(ids[8], ids[6]);
   }
+}
+
+TEST_F(DynamicFrontEndTest, TheFeatureFloorKeepsBackUnlabelledRemovalsFirst) {
+  // A walking person no detector names, and a floor above what removal leaves.
+  const Sequence sequence = Render(4, false, nullptr, [](int f) { return -0.05 * f; });
+  DynamicFrontEndConfig config;
+  config.sequential = true;
+  config.options.unlabelled_frames = 1;
+  DynamicFrontEnd plain(config, 1000, map_, nullptr);
+  config.options.min_kept_features = 100000;
+  DynamicFrontEnd floored(config, 1000, map_, nullptr);
+  for (int f = 0; f < 4; ++f) {
+    plain.BeginFrame(0.033 * f, sequence.bgr[f]);
+    floored.BeginFrame(0.033 * f, sequence.bgr[f]);
+    const Frame full = Extract(sequence, f);
+    const Frame without = plain.Filter(Frame(full), sequence.bgr[f], sequence.images[f].depth);
+    const Frame with = floored.Filter(Frame(full), sequence.bgr[f], sequence.images[f].depth);
+    EXPECT_EQ(with.Size(), full.Size()) << "frame " << f;
+    EXPECT_EQ(floored.LastReport().kept_back, plain.LastReport().removed_unlabelled);
+    EXPECT_EQ(floored.LastReport().removed_unlabelled, 0);
+  }
+  EXPECT_GT(plain.Stats().removed_unlabelled, 50u);
+  EXPECT_EQ(floored.Stats().features_kept_back, plain.Stats().removed_unlabelled);
+  EXPECT_EQ(floored.Stats().frames_floor, 3u);
+  const nlohmann::json json = DynamicStatsJson(floored.Stats());
+  EXPECT_EQ(json["features"]["kept_back"], plain.Stats().removed_unlabelled);
+  EXPECT_EQ(json["frames_floor"], 3);
+  EXPECT_TRUE(json["unlabelled"]["frames_suppressed"].contains("camera"));
 }
 
 TEST_F(DynamicFrontEndTest, CallOrderIsChecked) {

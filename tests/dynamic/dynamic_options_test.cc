@@ -62,6 +62,14 @@ TEST(DynamicOptionsTest, BadValuesNameTheirKey) {
   ExpectKeyError([](DynamicOptions& o) { o.min_cluster_points = 1; }, "Dynamic.minClusterPoints");
   ExpectKeyError([](DynamicOptions& o) { o.region_depth_step = std::nan(""); },
                  "Dynamic.regionDepthStep");
+  ExpectKeyError([](DynamicOptions& o) { o.blur_ratio = 1.5; }, "Dynamic.blurRatio");
+  ExpectKeyError([](DynamicOptions& o) { o.sharpness_window = 0; }, "Dynamic.sharpnessWindow");
+  ExpectKeyError([](DynamicOptions& o) { o.min_inlier_share = -0.1; }, "Dynamic.minInlierShare");
+  ExpectKeyError([](DynamicOptions& o) { o.residual_factor = -1; }, "Dynamic.residualFactor");
+  ExpectKeyError([](DynamicOptions& o) { o.max_unlabelled_share = 1.1; },
+                 "Dynamic.maxUnlabelledShare");
+  ExpectKeyError([](DynamicOptions& o) { o.unlabelled_frames = 0; }, "Dynamic.unlabelledFrames");
+  ExpectKeyError([](DynamicOptions& o) { o.min_kept_features = -5; }, "Dynamic.minKeptFeatures");
 }
 
 class DynamicOptionsFileTest : public ::testing::Test {
@@ -87,7 +95,10 @@ TEST_F(DynamicOptionsFileTest, ReadsValues) {
   const std::string path = Write(
       "Dynamic.epipolarThreshold: 2.5\nDynamic.largeShare: 0.4\nDynamic.motionRule: delta\n"
       "Dynamic.unlabelledMotion: 0\nDynamic.flowWindow: 15\nDynamic.objectMemoryFrames: 2\n"
-      "Dynamic.objectMemoryIou: 0.5\n");
+      "Dynamic.objectMemoryIou: 0.5\nDynamic.blurRatio: 0.4\n"
+      "Dynamic.sharpnessWindow: 10\nDynamic.minInlierShare: 0.6\nDynamic.residualFactor: 2.5\n"
+      "Dynamic.maxUnlabelledShare: 0.25\nDynamic.unlabelledFrames: 3\n"
+      "Dynamic.minKeptFeatures: 150\n");
   const DynamicOptions options = LoadDynamicOptions(SettingsFile(path));
   EXPECT_EQ(options.epipolar_threshold, 2.5);
   EXPECT_EQ(options.large_share, 0.4);
@@ -96,6 +107,13 @@ TEST_F(DynamicOptionsFileTest, ReadsValues) {
   EXPECT_EQ(options.flow_window, 15);
   EXPECT_EQ(options.object_memory_frames, 2);
   EXPECT_EQ(options.object_memory_iou, 0.5);
+  EXPECT_EQ(options.blur_ratio, 0.4);
+  EXPECT_EQ(options.sharpness_window, 10);
+  EXPECT_EQ(options.min_inlier_share, 0.6);
+  EXPECT_EQ(options.residual_factor, 2.5);
+  EXPECT_EQ(options.max_unlabelled_share, 0.25);
+  EXPECT_EQ(options.unlabelled_frames, 3);
+  EXPECT_EQ(options.min_kept_features, 150);
   EXPECT_EQ(options.delta_static, DynamicOptions().delta_static);
 }
 

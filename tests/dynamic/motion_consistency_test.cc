@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 
 #include "drvslam/core/error.h"
@@ -151,6 +152,82 @@ TEST(MotionConsistencyTest, RepeatedRunsGiveIdenticalResults) {
     EXPECT_EQ(first.tracks[i].cur, second.tracks[i].cur);
     EXPECT_EQ(first.tracks[i].moving, second.tracks[i].moving);
   }
+}
+
+// What a lens with `camera`'s distortion records of a pinhole rendering: each distorted pixel
+// shows the pinhole image at its undistorted position.
+test::Rendered Distort(const test::Rendered& pinhole, const PinholeCamera& camera) {
+  std::vector<cv::Point2f> grid;
+  for (int v = 0; v < pinhole.gray.rows; ++v) {
+    for (int u = 0; u < pinhole.gray.cols; ++u) grid.emplace_back(u, v);
+  }
+  const std::vector<cv::Point2f> source = camera.Undistort(grid);
+  cv::Mat map(pinhole.gray.size(), CV_32FC2);
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    map.at<cv::Vec2f>(static_cast<int>(i) / map.cols, static_cast<int>(i) % map.cols) =
+        cv::Vec2f(source[i].x, source[i].y);
+  }
+  test::Rendered distorted;
+  cv::remap(pinhole.gray, distorted.gray, map, cv::noArray(), cv::INTER_LINEAR);
+  cv::remap(pinhole.depth, distorted.depth, map, cv::noArray(), cv::INTER_NEAREST);
+  cv::remap(pinhole.labels, distorted.labels, map, cv::noArray(), cv::INTER_NEAREST);
+  return distorted;
+}
+
+// Median residual of the tracks off the moving patch.
+double StaticMedianResidual(const MotionConsistencyResult& result, const Pair& pair) {
+  std::vector<double> residuals;
+  for (const FlowTrack& track : result.tracks) {
+    if (pair.prev.labels.at<int>(cvRound(track.prev.y), cvRound(track.prev.x)) == 3) continue;
+    residuals.push_back(track.residual);
+  }
+  std::nth_element(residuals.begin(), residuals.begin() + residuals.size() / 2, residuals.end());
+  return residuals[residuals.size() / 2];
+}
+
+TEST(MotionConsistencyTest, TheSceneModelIsFittedOnUndistortedPoints) {
+  // Barrel distortion bends the lines a homography keeps straight: in distorted pixels the
+  // turning camera's static scene fits it worse.
+  CameraOptions lens;
+  lens.fx = lens.fy = 525.0;
+  lens.cx = 319.5;
+  lens.cy = 239.5;
+  lens.k1 = -0.3;
+  const PinholeCamera camera(lens);
+  Camera prev_camera;
+  Camera cur_camera;
+  cur_camera.yaw = 0.02;
+  const Pair pinhole = MakePair(prev_camera, cur_camera, {0.0, 0.05});
+  Pair pair;
+  pair.prev = Distort(pinhole.prev, camera);
+  pair.cur = Distort(pinhole.cur, camera);
+  cv::goodFeaturesToTrack(pair.prev.gray, pair.points, 800, 0.01, 7);
+  for (std::size_t i = 0; i < pair.points.size(); ++i) pair.ids.push_back(static_cast<int>(i));
+  DynamicOptions options;
+  const MotionConsistency consistency(options);
+  const FlowImage a = BuildFlowImage(pair.prev.gray, options);
+  const FlowImage b = BuildFlowImage(pair.cur.gray, options);
+
+  const MotionConsistencyResult undistorted =
+      consistency.Run(a, b, pair.points, pair.ids, {}, {}, cv::Mat(), &camera);
+  // What the model saw before: the distorted pixels (no camera given).
+  const MotionConsistencyResult distorted =
+      consistency.Run(a, b, pair.points, pair.ids, {}, {}, cv::Mat(), nullptr);
+  ASSERT_EQ(undistorted.model, MotionModel::kHomography);
+  ASSERT_EQ(distorted.model, MotionModel::kHomography);
+  // The tracks keep their image positions.
+  ASSERT_EQ(undistorted.tracks.size(), distorted.tracks.size());
+  for (std::size_t i = 0; i < undistorted.tracks.size(); ++i) {
+    ASSERT_EQ(undistorted.tracks[i].cur, distorted.tracks[i].cur);
+  }
+  const double undistorted_median = StaticMedianResidual(undistorted, pair);
+  const double distorted_median = StaticMedianResidual(distorted, pair);
+  EXPECT_LT(undistorted_median, 0.7 * distorted_median)
+      << undistorted_median << " px against " << distorted_median << " px";
+  EXPECT_GT(undistorted.model_inliers, distorted.model_inliers + 20);
+  const Counts counts = CountByLabel(undistorted, pair);
+  EXPECT_GE(counts.patch_moving, 0.9 * counts.patch)
+      << counts.patch_moving << " of " << counts.patch;
 }
 
 TEST(MotionConsistencyTest, EpipolarDistanceOfAKnownLine) {

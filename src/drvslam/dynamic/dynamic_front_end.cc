@@ -8,6 +8,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/dynamic/dynamic_drawing.h"
+#include "drvslam/dynamic/feature_floor.h"
 #include "drvslam/dynamic/removal_policy.h"
 #include "drvslam/semantic/mask_propagator.h"
 
@@ -31,6 +32,48 @@ void CheckMasks(const std::vector<Instance>& instances, const cv::Size& size,
   }
 }
 
+// Why `p` (a feature on the removal mask of objects) is removed: the first removed instance
+// under it, else (the mask's dilated margin) the first whose grown box holds it.
+RemovalCandidate DescribeObjectRemoval(const cv::Point2f& p, const std::vector<Instance>& instances,
+                                       const std::vector<ObjectEvidence>& objects,
+                                       const RemovalPlan& plan, int dilation) {
+  int owner = -1;
+  for (std::size_t k = 0; k < instances.size() && owner < 0; ++k) {
+    if (plan.remove[k] && !instances[k].mask.empty() && OnMask(instances[k].mask, p)) {
+      owner = static_cast<int>(k);
+    }
+  }
+  for (std::size_t k = 0; k < instances.size() && owner < 0; ++k) {
+    const cv::Rect& box = instances[k].box;
+    const cv::Rect2f grown(box.x - dilation, box.y - dilation, box.width + 2 * dilation,
+                           box.height + 2 * dilation);
+    if (plan.remove[k] && grown.contains(p)) owner = static_cast<int>(k);
+  }
+  RemovalCandidate candidate;
+  candidate.tier = RemovalTier::kStillObject;
+  if (owner >= 0 && owner < static_cast<int>(objects.size())) {
+    const ObjectEvidence& object = objects[owner];
+    if (object.moving) candidate.tier = RemovalTier::kMovingObject;
+    candidate.evidence = std::max({0.0, object.moving_share, object.reprojection_share});
+  }
+  return candidate;
+}
+
+// The moving points of the strongest region holding `p` (0 when none does).
+double RegionEvidence(const cv::Point2f& p, const std::vector<MovingRegion>& regions) {
+  int points = 0;
+  for (const MovingRegion& region : regions) {
+    if (!cv::Rect2f(region.box).contains(p)) continue;
+    const cv::Point local(static_cast<int>(p.x) - region.box.x,
+                          static_cast<int>(p.y) - region.box.y);
+    if (local.x < 0 || local.y < 0 || local.x >= region.mask.cols || local.y >= region.mask.rows) {
+      continue;
+    }
+    if (region.mask.at<uint8_t>(local) != 0) points = std::max(points, region.points);
+  }
+  return points;
+}
+
 }  // namespace
 
 DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features, Map& map,
@@ -42,7 +85,8 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
       consistency_(config_.options),
       ids_(config_.options.min_id_matches, config_.options.object_memory_frames,
            config_.options.object_memory_iou),
-      classifier_(config_.options) {
+      classifier_(config_.options),
+      blur_(config_.options) {
   config_.options.Check();
   if (config_.sequential) config_.realtime = false;
   if (config_.segmenter) {
@@ -81,6 +125,14 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
                     "ring_features,ring_matched,delta,tracks,moving_tracks,moving_share,"
                     "reprojected,reprojection_moving,reprojection_share,delta_rule,share_rule,"
                     "reprojection_rule,combined_rule,moving,share,large_share,model,pose\n";
+    const std::string frames = (std::filesystem::path(config_.debug_dir) / "frames.csv").string();
+    frames_csv_.open(frames);
+    if (!frames_csv_) throw Error(frames + ": cannot open for writing");
+    frames_csv_ << "frame,timestamp,model,pose,tracks,moving_points,sharpness,sharpness_reference,"
+                   "blurred,unlabelled_verdict,inlier_share,epipolar_threshold,"
+                   "reprojection_threshold,unlabelled_tested,unlabelled_moving,"
+                   "unlabelled_moving_share,regions,regions_pending,features,removed_on_objects,"
+                   "removed_unlabelled,kept_back\n";
   }
 }
 
@@ -256,6 +308,8 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
     gray = bgr;
   }
   FlowImage flow = BuildFlowImage(gray, o);
+  const SharpnessJudgement sharpness = blur_.Observe(gray);
+  report_.sharpness = sharpness;
   const bool has_previous = previous_ && previous_->flow.size == size;
   std::vector<FlowTrack> tracks;
   if (has_previous) {
@@ -330,31 +384,58 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   // Step 4: adaptive removal, plus moving things no detector names.
   const RemovalPlan plan = PlanRemoval(instances, potentially_moving, moving, model_ok, size, o);
   const cv::Mat object_mask = RemovalMask(instances, plan, size, o);
-  std::vector<MovingRegion> regions;
+  std::vector<MovingRegion> regions = FindTrustedUnlabelledMotion(motion, exclusion, depth, size);
   cv::Mat unlabelled_mask;
-  if (o.unlabelled_motion && model_ok && !depth.empty()) {
-    regions = FindUnlabelledMotion(motion.tracks, exclusion, depth, o);
-    if (!regions.empty()) {
-      unlabelled_mask = cv::Mat::zeros(size, CV_8UC1);
-      PaintRegions(regions, unlabelled_mask);
-    }
+  if (!regions.empty()) {
+    unlabelled_mask = cv::Mat::zeros(size, CV_8UC1);
+    PaintRegions(regions, unlabelled_mask);
   }
   const std::vector<cv::KeyPoint>& keypoints = features.Keypoints();
+  enum class Fate : uint8_t { kKept, kOnObject, kUnlabelled };
+  std::vector<Fate> fates(keypoints.size(), Fate::kKept);
+  int kept_count = 0;
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    if (OnMask(object_mask, keypoints[i].pt)) {
+      fates[i] = Fate::kOnObject;
+    } else if (!unlabelled_mask.empty() && OnMask(unlabelled_mask, keypoints[i].pt)) {
+      fates[i] = Fate::kUnlabelled;
+    } else {
+      ++kept_count;
+    }
+  }
+  // The floor: tracking keeps enough features, the least believed removals going back first.
+  if (kept_count < o.min_kept_features && kept_count < static_cast<int>(keypoints.size())) {
+    std::vector<RemovalCandidate> candidates;
+    for (std::size_t i = 0; i < keypoints.size(); ++i) {
+      if (fates[i] == Fate::kKept) continue;
+      RemovalCandidate candidate;
+      if (fates[i] == Fate::kOnObject) {
+        candidate =
+            DescribeObjectRemoval(keypoints[i].pt, instances, objects, plan, o.mask_dilation);
+      } else {
+        candidate.evidence = RegionEvidence(keypoints[i].pt, regions);
+      }
+      candidate.feature = static_cast<int>(i);
+      candidate.response = keypoints[i].response;
+      candidates.push_back(candidate);
+    }
+    for (const int i : KeepBack(std::move(candidates), kept_count, o.min_kept_features)) {
+      fates[i] = Fate::kKept;
+      ++report_.kept_back;
+    }
+  }
   std::vector<cv::KeyPoint> kept;
   std::vector<cv::KeyPoint> removed;
   std::vector<int> kept_rows;
   kept.reserve(keypoints.size());
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
-    if (OnMask(object_mask, keypoints[i].pt)) {
-      ++report_.removed_on_objects;
-      removed.push_back(keypoints[i]);
-    } else if (!unlabelled_mask.empty() && OnMask(unlabelled_mask, keypoints[i].pt)) {
-      ++report_.removed_unlabelled;
-      removed.push_back(keypoints[i]);
-    } else {
+    if (fates[i] == Fate::kKept) {
       kept.push_back(keypoints[i]);
       kept_rows.push_back(static_cast<int>(i));
+      continue;
     }
+    ++(fates[i] == Fate::kOnObject ? report_.removed_on_objects : report_.removed_unlabelled);
+    removed.push_back(keypoints[i]);
   }
   Frame filtered = [&] {
     if (removed.empty()) return std::move(frame);
@@ -387,6 +468,31 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   stats_.removed_unlabelled += report_.removed_unlabelled;
   stats_.unlabelled_regions += regions.size();
   stats_.map_points_culled += report_.map_points_culled;
+  if (sharpness.blurred) ++stats_.frames_blurred;
+  if (report_.unlabelled_weighed) {
+    switch (report_.unlabelled_evidence.verdict) {
+      case UnlabelledVerdict::kTrusted:
+        break;
+      case UnlabelledVerdict::kBlurred:
+        ++stats_.unlabelled_suppressed_blur;
+        break;
+      case UnlabelledVerdict::kMisfit:
+        ++stats_.unlabelled_suppressed_misfit;
+        break;
+      case UnlabelledVerdict::kCameraFailure:
+        ++stats_.unlabelled_suppressed_camera;
+        break;
+    }
+    if (report_.unlabelled_evidence.epipolar_threshold > (motion.model == MotionModel::kHomography
+                                                              ? o.homography_threshold
+                                                              : o.epipolar_threshold) ||
+        report_.unlabelled_evidence.reprojection_threshold > o.reprojection_threshold) {
+      ++stats_.frames_threshold_raised;
+    }
+  }
+  stats_.unlabelled_regions_pending += report_.unlabelled_pending;
+  stats_.features_kept_back += report_.kept_back;
+  if (report_.kept_back > 0) ++stats_.frames_floor;
   for (const ObjectEvidence& object : objects) {
     if (!object.potentially_moving) continue;
     ++stats_.object_frames;
@@ -408,9 +514,48 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   if (!config_.debug_dir.empty()) {
     WriteDebugPicture(bgr, kept, removed);
     WriteObjectRows();
+    WriteFrameRow();
   }
   ++next_index_;
   return filtered;
+}
+
+std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
+    const MotionConsistencyResult& motion, const cv::Mat& labelled, const cv::Mat& depth,
+    const cv::Size& size) {
+  const DynamicOptions& o = config_.options;
+  std::vector<MovingRegion> confirmed;
+  if (!o.unlabelled_motion || motion.model == MotionModel::kNone || depth.empty()) {
+    persistence_.Forget();
+    return confirmed;
+  }
+  UnlabelledEvidence evidence =
+      WeighUnlabelledEvidence(motion, labelled, report_.sharpness.blurred, o);
+  std::vector<MovingRegion> found;
+  if (evidence.verdict == UnlabelledVerdict::kTrusted) {
+    found = FindUnlabelledMotion(evidence.tracks, labelled, depth, o);
+    const std::vector<int> streaks = persistence_.Update(found, evidence.tracks, size);
+    // A frame whose model fits loosely (raised thresholds) needs its regions confirmed by the
+    // frames before it; a tight fit is believed at once (a walking person costs no frame).
+    const double base_epipolar =
+        motion.model == MotionModel::kHomography ? o.homography_threshold : o.epipolar_threshold;
+    const bool loose = evidence.epipolar_threshold > base_epipolar ||
+                       evidence.reprojection_threshold > o.reprojection_threshold;
+    const int needed = loose ? o.unlabelled_frames : 1;
+    for (std::size_t r = 0; r < found.size(); ++r) {
+      if (streaks[r] >= needed) {
+        confirmed.push_back(std::move(found[r]));
+      } else {
+        ++report_.unlabelled_pending;
+      }
+    }
+  } else {
+    persistence_.Forget();
+  }
+  evidence.tracks.clear();
+  report_.unlabelled_evidence = std::move(evidence);
+  report_.unlabelled_weighed = true;
+  return confirmed;
 }
 
 void DynamicFrontEnd::AfterTracking(const Frame& tracked) {
@@ -447,6 +592,23 @@ void DynamicFrontEnd::WriteObjectRows() {
     objects_csv_ << row;
   }
   objects_csv_.flush();
+}
+
+void DynamicFrontEnd::WriteFrameRow() {
+  const DynamicFrameReport& r = report_;
+  const UnlabelledEvidence& u = r.unlabelled_evidence;
+  char row[512];
+  std::snprintf(
+      row, sizeof(row),
+      "%zu,%.6f,%s,%d,%d,%d,%.2f,%.2f,%d,%s,%.4f,%.3f,%.3f,%d,%d,%.4f,%zu,%d,%d,%d,%d,%d\n",
+      r.frame_index, r.timestamp, MotionModelName(r.model), r.pose_ok, r.tracks, r.moving_points,
+      r.sharpness.sharpness, r.sharpness.reference, r.sharpness.blurred,
+      r.unlabelled_weighed ? UnlabelledVerdictName(u.verdict) : "none", u.inlier_share,
+      u.epipolar_threshold, u.reprojection_threshold, u.tested, u.moving, u.moving_share,
+      r.unlabelled.size(), r.unlabelled_pending, r.features_extracted, r.removed_on_objects,
+      r.removed_unlabelled, r.kept_back);
+  frames_csv_ << row;
+  frames_csv_.flush();
 }
 
 DynamicStats DynamicFrontEnd::Stats() const {

@@ -27,7 +27,10 @@
 // segmentation_wait (how long tracking waited for masks, keyframe waits included, or carried
 // them), motion_consistency (flow, scene model, reprojection test), removal (IDs, motion states,
 // culling, removal, filtering). Works without a segmenter too (geometry only: moving points
-// grouped into regions). Used by the tracking thread only; in sequential mode segmentation runs
+// grouped into regions, removed only when the evidence holds up: motion_trust.h,
+// motion_persistence.h). Removal never leaves fewer than Dynamic.minKeptFeatures features
+// (feature_floor.h). With debug_dir, frames.csv has one row per frame. Used by the tracking
+// thread only; in sequential mode segmentation runs
 // inline and the output is bit-identical from run to run.
 #pragma once
 
@@ -42,8 +45,11 @@
 
 #include "drvslam/core/timing.h"
 #include "drvslam/dynamic/dynamic_options.h"
+#include "drvslam/dynamic/frame_sharpness.h"
 #include "drvslam/dynamic/motion_consistency.h"
+#include "drvslam/dynamic/motion_persistence.h"
 #include "drvslam/dynamic/motion_state.h"
+#include "drvslam/dynamic/motion_trust.h"
 #include "drvslam/dynamic/moving_point_culler.h"
 #include "drvslam/dynamic/object_tracker.h"
 #include "drvslam/dynamic/unlabelled_motion.h"
@@ -73,9 +79,14 @@ struct DynamicFrontEndConfig {
 struct DynamicFrameReport {
   std::size_t frame_index = 0;
   double timestamp = 0.0;
-  std::vector<Instance> instances;      // this frame's masks, with track IDs
-  std::vector<ObjectEvidence> objects;  // one per instance
-  std::vector<MovingRegion> unlabelled;
+  std::vector<Instance> instances;       // this frame's masks, with track IDs
+  std::vector<ObjectEvidence> objects;   // one per instance
+  std::vector<MovingRegion> unlabelled;  // confirmed regions, removed
+  SharpnessJudgement sharpness;
+  // Whether unlabelled motion was weighed (on, with a scene model and depth), and the verdict.
+  bool unlabelled_weighed = false;
+  UnlabelledEvidence unlabelled_evidence;  // its tracks are not kept
+  int unlabelled_pending = 0;  // regions found but not yet seen in Dynamic.unlabelledFrames frames
   MotionModel model = MotionModel::kNone;
   bool pose_ok = false;  // the frame-to-frame pose (reprojection test) was fitted
   int tracks = 0;
@@ -89,6 +100,7 @@ struct DynamicFrameReport {
   int features_extracted = 0;
   int removed_on_objects = 0;
   int removed_unlabelled = 0;
+  int kept_back = 0;  // removed features kept back by Dynamic.minKeptFeatures
   int map_points_culled = 0;
 };
 
@@ -106,6 +118,17 @@ struct DynamicStats {
   std::size_t moving_object_frames = 0;
   std::size_t ids_issued = 0;  // distinct IDs of potentially-moving objects
   std::size_t unlabelled_regions = 0;
+  // Distrust of unlabelled motion (motion_trust.h): frames whose unlabelled removal was
+  // suppressed, by reason; frames whose thresholds were raised; regions not (yet) confirmed.
+  std::size_t frames_blurred = 0;
+  std::size_t unlabelled_suppressed_blur = 0;
+  std::size_t unlabelled_suppressed_misfit = 0;
+  std::size_t unlabelled_suppressed_camera = 0;
+  std::size_t frames_threshold_raised = 0;
+  std::size_t unlabelled_regions_pending = 0;
+  // The feature floor: removed features kept back, and the frames where it acted.
+  std::size_t features_kept_back = 0;
+  std::size_t frames_floor = 0;
   std::size_t map_points_culled = 0;
   // Extraction skipped on moving objects: frames with a skip mask and their mean image share.
   std::size_t frames_skip_mask = 0;
@@ -175,6 +198,12 @@ class DynamicFrontEnd {
   void WriteDebugPicture(const cv::Mat& bgr, const std::vector<cv::KeyPoint>& kept,
                          const std::vector<cv::KeyPoint>& removed) const;
   void WriteObjectRows();
+  void WriteFrameRow();
+  // Unlabelled motion that holds up (motion_trust.h, motion_persistence.h); fills the report's
+  // unlabelled fields.
+  std::vector<MovingRegion> FindTrustedUnlabelledMotion(const MotionConsistencyResult& motion,
+                                                        const cv::Mat& labelled,
+                                                        const cv::Mat& depth, const cv::Size& size);
 
   DynamicFrontEndConfig config_;
   int base_features_;
@@ -195,6 +224,8 @@ class DynamicFrontEnd {
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;
   MovingPointCuller culler_;
+  BlurDetector blur_;
+  MotionPersistence persistence_;
 
   std::size_t next_index_ = 0;
   bool begun_ = false;
@@ -204,6 +235,7 @@ class DynamicFrontEnd {
   double skip_share_sum_ = 0.0;
   std::set<int> moving_class_ids_;
   std::ofstream objects_csv_;
+  std::ofstream frames_csv_;  // one row per frame: sharpness, unlabelled verdict, removal
   DynamicFrameReport report_;
   DynamicStats stats_;
 };

@@ -89,6 +89,19 @@ void DynamicOptions::Check() const {
           "must be > 0 (metres)");
   Require(Finite(region_margin) && region_margin >= 0.0, "Dynamic.regionMargin", region_margin,
           "must be >= 0");
+  Require(InUnit(blur_ratio), "Dynamic.blurRatio", blur_ratio, "must be in [0, 1] (0 = off)");
+  Require(sharpness_window >= 1 && sharpness_window <= 10000, "Dynamic.sharpnessWindow",
+          sharpness_window, "must be in 1..10000");
+  Require(InUnit(min_inlier_share), "Dynamic.minInlierShare", min_inlier_share,
+          "must be in [0, 1] (0 = off)");
+  Require(Finite(residual_factor) && residual_factor >= 0.0 && residual_factor <= 100.0,
+          "Dynamic.residualFactor", residual_factor, "must be in [0, 100] (0 = off)");
+  Require(InUnit(max_unlabelled_share), "Dynamic.maxUnlabelledShare", max_unlabelled_share,
+          "must be in [0, 1] (1 = off)");
+  Require(unlabelled_frames >= 1 && unlabelled_frames <= 255, "Dynamic.unlabelledFrames",
+          unlabelled_frames, "must be in 1..255");
+  Require(min_kept_features >= 0 && min_kept_features <= 100000, "Dynamic.minKeptFeatures",
+          min_kept_features, "must be in 0..100000 (0 = off)");
 }
 
 DynamicOptions LoadDynamicOptions(const SettingsFile& file) {
@@ -136,6 +149,13 @@ DynamicOptions LoadDynamicOptions(const SettingsFile& file) {
     o.min_cluster_points = file.GetInt("Dynamic.minClusterPoints", o.min_cluster_points);
     o.region_depth_step = file.GetDouble("Dynamic.regionDepthStep", o.region_depth_step);
     o.region_margin = file.GetDouble("Dynamic.regionMargin", o.region_margin);
+    o.blur_ratio = file.GetDouble("Dynamic.blurRatio", o.blur_ratio);
+    o.sharpness_window = file.GetInt("Dynamic.sharpnessWindow", o.sharpness_window);
+    o.min_inlier_share = file.GetDouble("Dynamic.minInlierShare", o.min_inlier_share);
+    o.residual_factor = file.GetDouble("Dynamic.residualFactor", o.residual_factor);
+    o.max_unlabelled_share = file.GetDouble("Dynamic.maxUnlabelledShare", o.max_unlabelled_share);
+    o.unlabelled_frames = file.GetInt("Dynamic.unlabelledFrames", o.unlabelled_frames);
+    o.min_kept_features = file.GetInt("Dynamic.minKeptFeatures", o.min_kept_features);
     o.cull_moving_points = file.GetBool("Dynamic.cullMovingPoints", o.cull_moving_points);
     o.skip_moving_extraction =
         file.GetBool("Dynamic.skipMovingExtraction", o.skip_moving_extraction);

@@ -101,6 +101,36 @@ struct DynamicOptions {
   double region_depth_step = 0.03;   // Dynamic.regionDepthStep: depth jump that ends a region
   double region_margin = 20.0;       // Dynamic.regionMargin: region growth beyond the points
 
+  // When unlabelled motion is believed (a real camera's blur, rolling shutter, misregistered
+  // depth and calibration error make a static scene look moving; see motion_trust.h). Each
+  // check has a value that turns it off.
+  // Dynamic.blurRatio: a frame whose sharpness is below this share of the sharpest of the last
+  // Dynamic.sharpnessWindow frames is blurred: no unlabelled removal (0 = never blurred).
+  double blur_ratio = 0.5;
+  int sharpness_window = 30;  // Dynamic.sharpnessWindow: frames, this one included
+  // Dynamic.minInlierShare: below this share of inliers among the static pairs (the
+  // frame-to-frame pose's where it was fitted, else the fundamental matrix's or homography's)
+  // the scene model misfits: no unlabelled removal (0 = off).
+  double min_inlier_share = 0.5;
+  // Dynamic.residualFactor: for unlabelled motion a track moves only when its residual also
+  // exceeds this times the median residual of the frame's static pairs under the same test, so
+  // a frame whose model fits everything loosely raises its own bar (0 = fixed thresholds).
+  double residual_factor = 3.0;
+  // Dynamic.maxUnlabelledShare: when more than this share of the tested tracks outside
+  // potentially-moving masks move, the camera model failed rather than the world moved: no
+  // unlabelled removal (1 = off).
+  double max_unlabelled_share = 0.35;
+  // Dynamic.unlabelledFrames: in a frame whose thresholds Dynamic.residualFactor raised (a loose
+  // fit), a region is removed only once it has been found moving in this many consecutive
+  // frames (its points' previous positions inside the previous frame's region); a tightly
+  // fitting frame's regions go at once (1 = always at once).
+  int unlabelled_frames = 2;
+
+  // Dynamic.minKeptFeatures: removal never leaves fewer features than this; features are kept
+  // back weakest evidence first: unlabelled regions, then potentially-moving objects not judged
+  // moving, then moving objects (0 = off).
+  int min_kept_features = 200;
+
   // Map points.
   bool cull_moving_points = true;  // Dynamic.cullMovingPoints
 

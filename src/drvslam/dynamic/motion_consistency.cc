@@ -152,18 +152,36 @@ MotionConsistencyResult MotionConsistency::Test(std::vector<FlowTrack> tracks, c
   }
   MotionConsistencyResult result;
   result.tracks = std::move(tracks);
-  std::vector<cv::Point2f> model_prev;
-  std::vector<cv::Point2f> model_cur;
   std::vector<double> flows;
   for (FlowTrack& track : result.tracks) {
     track.model_pair = !OnMask(prev_exclusion, track.prev) && !OnMask(cur_exclusion, track.cur) &&
                        !NearBorder(track.prev, size, options_.border_margin) &&
                        !NearBorder(track.cur, size, options_.border_margin);
     if (track.model_pair) {
-      model_prev.push_back(track.prev);
-      model_cur.push_back(track.cur);
       flows.push_back(std::hypot(track.cur.x - track.prev.x, track.cur.y - track.prev.y));
     }
+  }
+  // The scene models hold for the pinhole image, not the distorted one: they are fitted and
+  // tested on undistorted positions (still pixels, as P = K), so their thresholds are in
+  // undistorted pixels. Without distortion coefficients these are the flow's own positions.
+  std::vector<cv::Point2f> undistorted_prev;
+  std::vector<cv::Point2f> undistorted_cur;
+  undistorted_prev.reserve(result.tracks.size());
+  undistorted_cur.reserve(result.tracks.size());
+  for (const FlowTrack& track : result.tracks) {
+    undistorted_prev.push_back(track.prev);
+    undistorted_cur.push_back(track.cur);
+  }
+  if (camera != nullptr) {
+    undistorted_prev = camera->Undistort(undistorted_prev);
+    undistorted_cur = camera->Undistort(undistorted_cur);
+  }
+  std::vector<cv::Point2f> model_prev;
+  std::vector<cv::Point2f> model_cur;
+  for (std::size_t i = 0; i < result.tracks.size(); ++i) {
+    if (!result.tracks[i].model_pair) continue;
+    model_prev.push_back(undistorted_prev[i]);
+    model_cur.push_back(undistorted_cur[i]);
   }
   result.model_pairs = static_cast<int>(model_prev.size());
   if (!flows.empty()) {
@@ -171,7 +189,9 @@ MotionConsistencyResult MotionConsistency::Test(std::vector<FlowTrack> tracks, c
     result.median_flow = flows[flows.size() / 2];
   }
   if (result.model_pairs < options_.min_model_pairs) return result;
-  if (camera != nullptr && !prev_depth.empty()) TestReprojection(prev_depth, *camera, &result);
+  if (camera != nullptr && !prev_depth.empty()) {
+    TestReprojection(prev_depth, *camera, undistorted_prev, undistorted_cur, &result);
+  }
 
   std::vector<uchar> f_inliers;
   const cv::Mat f =
@@ -215,9 +235,12 @@ MotionConsistencyResult MotionConsistency::Test(std::vector<FlowTrack> tracks, c
 
   const bool use_h = result.model == MotionModel::kHomography;
   const double threshold = use_h ? options_.homography_threshold : options_.epipolar_threshold;
-  for (FlowTrack& track : result.tracks) {
-    track.residual = use_h ? TransferError(result.homography, track.prev, track.cur)
-                           : EpipolarDistance(result.fundamental, track.prev, track.cur);
+  for (std::size_t i = 0; i < result.tracks.size(); ++i) {
+    FlowTrack& track = result.tracks[i];
+    const cv::Point2f& p = undistorted_prev[i];
+    const cv::Point2f& c = undistorted_cur[i];
+    track.residual =
+        use_h ? TransferError(result.homography, p, c) : EpipolarDistance(result.fundamental, p, c);
     track.moving = track.residual > threshold;
     if (track.moving) ++result.moving_points;
   }
@@ -225,18 +248,10 @@ MotionConsistencyResult MotionConsistency::Test(std::vector<FlowTrack> tracks, c
 }
 
 void MotionConsistency::TestReprojection(const cv::Mat& prev_depth, const PinholeCamera& camera,
+                                         const std::vector<cv::Point2f>& prev_pixels,
+                                         const std::vector<cv::Point2f>& cur_pixels,
                                          MotionConsistencyResult* result) const {
   std::vector<FlowTrack>& tracks = result->tracks;
-  std::vector<cv::Point2f> prev_pixels;
-  std::vector<cv::Point2f> cur_pixels;
-  prev_pixels.reserve(tracks.size());
-  cur_pixels.reserve(tracks.size());
-  for (const FlowTrack& track : tracks) {
-    prev_pixels.push_back(track.prev);
-    cur_pixels.push_back(track.cur);
-  }
-  prev_pixels = camera.Undistort(prev_pixels);
-  cur_pixels = camera.Undistort(cur_pixels);
 
   // Previous points with a trustworthy depth: not on a depth edge, where a corner's pixel may
   // take either surface's depth.
@@ -265,6 +280,7 @@ void MotionConsistency::TestReprojection(const cv::Mat& prev_depth, const Pinhol
     image.push_back(cur_pixels[i]);
   }
   if (static_cast<int>(object.size()) < options_.min_model_pairs) return;
+  result->pose_pairs = static_cast<int>(object.size());
   const cv::Mat k = camera.K();
   cv::Mat rvec, tvec;
   std::vector<int> inliers;

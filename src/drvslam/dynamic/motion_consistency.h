@@ -10,6 +10,7 @@
 // 2-D correspondence; the frame-to-frame camera motion is fitted to them (PnP in RANSAC) and
 // every track's reprojection error tests it in both image directions, whatever the baseline
 // (the epipolar test is blind along epipolar lines and ill-posed without translation).
+// The models are fitted on undistorted positions (lens distortion bends epipolar lines).
 // Deterministic: OpenCV's RANSAC starts from a fixed random state.
 #pragma once
 
@@ -41,8 +42,9 @@ struct FlowTrack {
   cv::Point2f prev;
   cv::Point2f cur;
   bool model_pair = false;  // used to fit the scene model
-  double residual = 0.0;    // epipolar distance (or homography transfer error), pixels
-  bool moving = false;      // residual above the threshold of the model used
+  // Epipolar distance (or homography transfer error), undistorted pixels.
+  double residual = 0.0;
+  bool moving = false;  // residual above the threshold of the model used
   // Reprojection error with the frame-to-frame pose (pixels); -1 where it is unknown (no pose,
   // no depth, or a depth edge at the previous point).
   double reprojection = -1.0;
@@ -62,6 +64,7 @@ struct MotionConsistencyResult {
   int moving_points = 0;   // tracks flagged moving
   double median_flow = 0;  // over model pairs, pixels
   bool pose_ok = false;    // the frame-to-frame pose was fitted (needs depth)
+  int pose_pairs = 0;      // model pairs with depth offered to the pose's RANSAC
   int pose_inliers = 0;
   int reprojection_moving = 0;  // tracks flagged by the reprojection test
 };
@@ -74,9 +77,10 @@ class MotionConsistency {
   // prev_points (with caller ids `ids`, same length) are tracked from `prev` to `cur` (same
   // size). prev_exclusion / cur_exclusion: empty or CV_8UC1 of the image size; pairs whose
   // previous / current point lies on a nonzero pixel do not fit the model (they are still
-  // tested). prev_depth (CV_32FC1 metres of the previous image, may be empty) and `camera`
-  // (may be null) enable the reprojection test. Throws drvslam::Error when the sizes or lengths
-  // disagree.
+  // tested). `camera` (may be null: no distortion assumed) undistorts the positions the scene
+  // models are fitted and tested on; with prev_depth (CV_32FC1 metres of the previous image, may
+  // be empty) it enables the reprojection test. Tracks keep their distorted image positions.
+  // Throws drvslam::Error when the sizes or lengths disagree.
   MotionConsistencyResult Run(const FlowImage& prev, const FlowImage& cur,
                               const std::vector<cv::Point2f>& prev_points,
                               const std::vector<int>& ids, const cv::Mat& prev_exclusion,
@@ -103,8 +107,12 @@ class MotionConsistency {
                               const cv::Point2f& cur);
 
  private:
-  // Fits the frame-to-frame pose and fills each track's reprojection error.
+  // Fits the frame-to-frame pose and fills each track's reprojection error. prev_pixels /
+  // cur_pixels: the tracks' undistorted positions (depth is looked up at the distorted ones,
+  // where the registered depth image has it).
   void TestReprojection(const cv::Mat& prev_depth, const PinholeCamera& camera,
+                        const std::vector<cv::Point2f>& prev_pixels,
+                        const std::vector<cv::Point2f>& cur_pixels,
                         MotionConsistencyResult* result) const;
 
   DynamicOptions options_;

@@ -13,6 +13,7 @@ namespace {
 struct MovingPoint {
   cv::Point2f p;
   float depth;
+  int track;
 };
 
 int Find(std::vector<int>& parent, int i) {
@@ -35,7 +36,8 @@ std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tra
     throw Error("FindUnlabelledMotion: the labelled mask must be CV_8UC1 of the depth's size");
   }
   std::vector<MovingPoint> points;
-  for (const FlowTrack& track : tracks) {
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    const FlowTrack& track = tracks[t];
     if (!track.MovingBest()) continue;
     const int x = static_cast<int>(track.cur.x);
     const int y = static_cast<int>(track.cur.y);
@@ -43,7 +45,7 @@ std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tra
     if (!labelled.empty() && labelled.at<uint8_t>(y, x) != 0) continue;
     const float z = depth.at<float>(y, x);
     if (!(z > 0.0f) || !std::isfinite(z)) continue;
-    points.push_back({track.cur, z});
+    points.push_back({track.cur, z, static_cast<int>(t)});
   }
   std::vector<MovingRegion> regions;
   if (static_cast<int>(points.size()) < options.min_cluster_points) return regions;
@@ -99,6 +101,7 @@ std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tra
       cv::bitwise_and(region.mask, outside, region.mask);
     }
     region.points = static_cast<int>(cluster.size());
+    for (const int i : cluster) region.members.push_back(points[i].track);
     regions.push_back(std::move(region));
   }
   return regions;

@@ -16,9 +16,10 @@
 namespace drvslam {
 
 struct MovingRegion {
-  cv::Rect box;    // the region's extent in the image
-  cv::Mat mask;    // CV_8UC1 of box's size, 255 inside the region
-  int points = 0;  // moving points that formed it
+  cv::Rect box;              // the region's extent in the image
+  cv::Mat mask;              // CV_8UC1 of box's size, 255 inside the region
+  int points = 0;            // moving points that formed it
+  std::vector<int> members;  // those points: indices into the tracks given
 };
 
 // tracks: MotionConsistency's output. labelled: empty or CV_8UC1 of the depth's size (nonzero =

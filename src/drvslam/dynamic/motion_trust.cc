@@ -1,0 +1,99 @@
+#include "drvslam/dynamic/motion_trust.h"
+
+#include <algorithm>
+
+#include "drvslam/core/error.h"
+
+namespace drvslam {
+namespace {
+
+// Lower median; 0 for none.
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + (values.size() - 1) / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+bool Labelled(const cv::Mat& mask, const cv::Point2f& p) {
+  if (mask.empty()) return false;
+  const int x = static_cast<int>(p.x);
+  const int y = static_cast<int>(p.y);
+  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
+  return mask.at<uint8_t>(y, x) != 0;
+}
+
+}  // namespace
+
+const char* UnlabelledVerdictName(UnlabelledVerdict verdict) {
+  switch (verdict) {
+    case UnlabelledVerdict::kTrusted:
+      return "trusted";
+    case UnlabelledVerdict::kBlurred:
+      return "blur";
+    case UnlabelledVerdict::kMisfit:
+      return "misfit";
+    case UnlabelledVerdict::kCameraFailure:
+      return "camera";
+  }
+  return "?";
+}
+
+UnlabelledEvidence WeighUnlabelledEvidence(const MotionConsistencyResult& motion,
+                                           const cv::Mat& labelled, bool blurred,
+                                           const DynamicOptions& options) {
+  if (!labelled.empty() && labelled.type() != CV_8UC1) {
+    throw Error("WeighUnlabelledEvidence: the labelled mask must be CV_8UC1");
+  }
+  UnlabelledEvidence evidence;
+  if (motion.pose_ok && motion.pose_pairs > 0) {
+    evidence.inlier_share = static_cast<double>(motion.pose_inliers) / motion.pose_pairs;
+  } else if (motion.model != MotionModel::kNone && motion.model_pairs > 0) {
+    evidence.inlier_share = static_cast<double>(motion.model_inliers) / motion.model_pairs;
+  }
+  if (blurred) {
+    evidence.verdict = UnlabelledVerdict::kBlurred;
+    return evidence;
+  }
+  if (evidence.inlier_share >= 0.0 && evidence.inlier_share < options.min_inlier_share) {
+    evidence.verdict = UnlabelledVerdict::kMisfit;
+    return evidence;
+  }
+
+  // The static pairs' typical residual under each test: what this frame's model leaves
+  // unexplained everywhere, which no single point's residual should be blamed for.
+  std::vector<double> epipolar;
+  std::vector<double> reprojection;
+  for (const FlowTrack& track : motion.tracks) {
+    if (!track.model_pair) continue;
+    epipolar.push_back(track.residual);
+    if (track.reprojection >= 0.0) reprojection.push_back(track.reprojection);
+  }
+  const double base_epipolar = motion.model == MotionModel::kHomography
+                                   ? options.homography_threshold
+                                   : options.epipolar_threshold;
+  evidence.epipolar_threshold =
+      std::max(base_epipolar, options.residual_factor * Median(std::move(epipolar)));
+  evidence.reprojection_threshold = std::max(
+      options.reprojection_threshold, options.residual_factor * Median(std::move(reprojection)));
+
+  evidence.tracks = motion.tracks;
+  for (FlowTrack& track : evidence.tracks) {
+    track.moving = track.moving && track.residual > evidence.epipolar_threshold;
+    track.reprojection_moving =
+        track.reprojection_moving && track.reprojection > evidence.reprojection_threshold;
+    if (Labelled(labelled, track.cur)) continue;
+    if (motion.model == MotionModel::kNone && track.reprojection < 0.0) continue;
+    ++evidence.tested;
+    if (track.MovingBest()) ++evidence.moving;
+  }
+  evidence.moving_share =
+      evidence.tested > 0 ? static_cast<double>(evidence.moving) / evidence.tested : 0.0;
+  if (evidence.moving_share > options.max_unlabelled_share) {
+    evidence.verdict = UnlabelledVerdict::kCameraFailure;
+    evidence.tracks.clear();
+  }
+  return evidence;
+}
+
+}  // namespace drvslam
