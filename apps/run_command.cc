@@ -80,7 +80,10 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   }
   std::printf("wrote:       %s/{CameraTrajectory.txt,KeyFrameTrajectory.txt,stats.json}\n",
               out_dir.c_str());
-  if (s.dense) std::printf("             %s/{dense_map.ply,dense_map.pcd}\n", out_dir.c_str());
+  if (s.dense) {
+    std::printf("             %s/{dense_map.ply,dense_map.pcd,dense_map.bt,dense_map_labels.json}\n",
+                out_dir.c_str());
+  }
 }
 
 const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
