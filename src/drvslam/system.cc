@@ -64,8 +64,10 @@ System::System(const Settings& settings, const TrackerOptions& tracker_options,
     });
   }
   if (options.dense && options.dense->enabled) {
+    // In realtime runs a dense map that falls behind drops keyframes instead of stalling tracking.
+    const bool realtime = options.dynamic && options.dynamic->realtime;
     dense_ = std::make_unique<DenseMapper>(settings.camera, *options.dense, options.sequential,
-                                           &timings_);
+                                           &timings_, /*never_block=*/realtime);
     if (options.dynamic && options.dynamic->segmenter) {
       dense_classes_ = std::make_unique<ClassTable>(options.dynamic->segmenter->ClassNames(),
                                                     options.dynamic->segmentation);

@@ -23,6 +23,21 @@ TEST(BoundedQueueTest, DropOldestKeepsNewest) {
   EXPECT_EQ(queue.Pop().value(), 4);
 }
 
+TEST(BoundedQueueTest, TryPushRefusesWhenFullOrClosedAndKeepsWhatIsQueued) {
+  BoundedQueue<int> queue(2);
+  EXPECT_TRUE(queue.TryPush(1));
+  EXPECT_TRUE(queue.TryPush(2));
+  EXPECT_FALSE(queue.TryPush(3));
+  EXPECT_EQ(queue.Size(), 2u);
+  EXPECT_EQ(queue.Pop().value(), 1);
+  EXPECT_TRUE(queue.TryPush(4));
+  queue.Close();
+  EXPECT_FALSE(queue.TryPush(5));
+  EXPECT_EQ(queue.Pop().value(), 2);
+  EXPECT_EQ(queue.Pop().value(), 4);
+  EXPECT_FALSE(queue.Pop().has_value());
+}
+
 TEST(BoundedQueueTest, CloseWakesConsumerAndDrains) {
   BoundedQueue<int> queue(2);
   queue.Push(7);

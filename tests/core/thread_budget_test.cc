@@ -2,7 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/core.hpp>
+#include <thread>
+
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
 
 namespace drvslam {
 namespace {
@@ -21,6 +29,33 @@ TEST(ThreadBudgetTest, AppliesToOpenCvsProcessWidePool) {
   ApplyOpenCvThreadBudget(0);
   EXPECT_EQ(cv::getNumThreads(), original);
 }
+
+TEST(ThreadBudgetTest, DenseMappingYieldsMostTheNetworkNot) {
+  EXPECT_EQ(NiceOffset(BackgroundStage::kSegmentation), 0);
+  EXPECT_GT(NiceOffset(BackgroundStage::kLocalMapping), 0);
+  EXPECT_GT(NiceOffset(BackgroundStage::kLoopClosing), NiceOffset(BackgroundStage::kLocalMapping));
+  EXPECT_GT(NiceOffset(BackgroundStage::kDenseMapping), NiceOffset(BackgroundStage::kLoopClosing));
+}
+
+#ifdef __linux__
+int ThisThreadsNice() { return getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid))); }
+
+TEST(ThreadBudgetTest, LowersOnlyTheCallingThread) {
+  const int caller_before = ThisThreadsNice();
+  int stage_before = 0;
+  int stage_after = 0;
+  std::thread stage([&] {
+    stage_before = ThisThreadsNice();
+    LowerCurrentThreadPriority(BackgroundStage::kDenseMapping);
+    stage_after = ThisThreadsNice();
+  });
+  stage.join();
+  // Nice values stop at 19.
+  const int expected = std::min(19, stage_before + NiceOffset(BackgroundStage::kDenseMapping));
+  EXPECT_EQ(stage_after, expected);
+  EXPECT_EQ(ThisThreadsNice(), caller_before);
+}
+#endif
 
 }  // namespace
 }  // namespace drvslam

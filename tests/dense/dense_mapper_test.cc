@@ -114,6 +114,34 @@ TEST(DenseMapper, ThreadedAndSequentialGiveTheSameMap) {
   EXPECT_EQ(threaded.Stats().keyframes, 4u);
 }
 
+// Keyframes handed over faster than the dense thread integrates them (prepared in advance, then
+// handed over back to back; one fits the queue): in a realtime run they are dropped and counted
+// and the hand-over never waits; otherwise every one is integrated.
+TEST(DenseMapper, NeverBlockDropsKeyFramesItHasNoRoomForAndCountsThem) {
+  const CameraOptions camera = SmallCamera();
+  DenseMapOptions options;
+  options.queue_capacity = 1;
+  options.enhancement_frames = 0;  // a keyframe is handed over at once
+  constexpr std::size_t kKeyFrames = 40;
+  for (const bool never_block : {true, false}) {
+    std::vector<DenseFrame> frames;
+    for (std::size_t i = 0; i < kKeyFrames; ++i) {
+      frames.push_back(BookFrame(camera, static_cast<long>(i), 0.01 * i));
+    }
+    DenseMapper mapper(camera, options, /*sequential=*/false, nullptr, never_block);
+    for (DenseFrame& frame : frames) mapper.AddKeyFrame(std::move(frame), nullptr);
+    mapper.Shutdown();
+    const DenseMapStats stats = mapper.Stats();
+    EXPECT_EQ(stats.keyframes + stats.keyframes_dropped, kKeyFrames) << never_block;
+    if (never_block) {
+      EXPECT_GT(stats.keyframes_dropped, 0u);
+      EXPECT_GE(stats.keyframes, 1u);
+    } else {
+      EXPECT_EQ(stats.keyframes_dropped, 0u);
+    }
+  }
+}
+
 TEST(DenseMapper, PointsFollowTheirKeyFrameWhenItsPoseIsCorrected) {
   const CameraOptions camera = SmallCamera();
   DenseMapOptions options;

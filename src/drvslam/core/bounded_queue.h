@@ -27,6 +27,15 @@ class BoundedQueue {
     return true;
   }
 
+  // Never blocks: false when the queue is full (the item is not taken) or closed.
+  bool TryPush(T item) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (closed_ || items_.size() >= capacity_) return false;
+    items_.push_back(std::move(item));
+    not_empty_.notify_one();
+    return true;
+  }
+
   // Never blocks: when full, the oldest item is discarded to make room. Returns false when
   // closed.
   bool PushDropOldest(T item) {

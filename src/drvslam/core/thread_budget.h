@@ -21,3 +21,24 @@ int ChooseOpenCvThreads(int configured, bool sequential);
 void ApplyOpenCvThreadBudget(int threads);
 
 }  // namespace drvslam
+
+namespace drvslam {
+
+// The threads that run beside tracking. Tracking has a deadline (the next camera frame), so when
+// the cores are short the stages whose delay costs least yield to it by running at a lower
+// scheduling priority (a higher nice value): the dense map, which nothing in the loop waits for,
+// the most; loop closing, which is rare, and local mapping, which has a keyframe's time, a little.
+// The network keeps the tracking thread's priority: its masks are only useful while fresh. The
+// offsets only matter when threads compete for a core; a thread that waits for another (tracking
+// waiting for masks, for example) leaves the core to it at any priority.
+enum class BackgroundStage { kLocalMapping, kLoopClosing, kSegmentation, kDenseMapping };
+
+// The nice offset of a stage's thread against the process's own priority.
+int NiceOffset(BackgroundStage stage);
+
+// Lowers the calling thread's priority by NiceOffset(stage). Called first thing by each stage's
+// own thread; a sequential run has no such threads. Linux only (nice is per thread there); a
+// refusal by the OS is logged and otherwise ignored.
+void LowerCurrentThreadPriority(BackgroundStage stage);
+
+}  // namespace drvslam

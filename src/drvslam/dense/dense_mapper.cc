@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "drvslam/core/thread_budget.h"
 #include "drvslam/dense/voxel_grid.h"
 
 namespace drvslam {
@@ -32,11 +33,12 @@ SE3 CurrentKeyFramePose(const KeyFrame& keyframe) {
 }
 
 DenseMapper::DenseMapper(const CameraOptions& camera, const DenseMapOptions& options,
-                         bool sequential, StageTimings* timings)
+                         bool sequential, StageTimings* timings, bool never_block)
     : camera_(camera),
       options_(Checked(options)),
       sequential_(sequential),
       timings_(timings),
+      never_block_(never_block),
       rays_(MakePixelRays(camera)),
       frames_before_(options.enhancement_frames / 2),
       frames_after_(options.enhancement_frames - options.enhancement_frames / 2),
@@ -57,6 +59,7 @@ void DenseMapper::Shutdown() {
 }
 
 void DenseMapper::Run() {
+  LowerCurrentThreadPriority(BackgroundStage::kDenseMapping);
   while (std::optional<Job> job = queue_.Pop()) {
     // Frames are checked when handed over; whatever else goes wrong loses one keyframe, never
     // the thread.
@@ -149,6 +152,8 @@ void DenseMapper::DispatchWaiting(bool flush) {
 void DenseMapper::Dispatch(Job job) {
   if (sequential_ || stopped_) {
     Process(std::move(job));
+  } else if (never_block_ && std::holds_alternative<KeyFrameJob>(job)) {
+    if (!queue_.TryPush(std::move(job))) ++keyframes_dropped_;
   } else {
     queue_.Push(std::move(job));
   }
@@ -335,6 +340,7 @@ DenseMapStats DenseMapper::Stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   DenseMapStats stats = stats_;
   stats.frames = frames_.load();
+  stats.keyframes_dropped = keyframes_dropped_.load();
   stats.background_points = coarse_.Size();
   stats.object_points = fine_.Size();
   stats.points = stats.background_points + stats.object_points;

@@ -34,8 +34,10 @@
 namespace drvslam {
 
 struct DenseMapStats {
-  std::size_t frames = 0;              // frames handed over
-  std::size_t keyframes = 0;           // keyframes integrated
+  std::size_t frames = 0;     // frames handed over
+  std::size_t keyframes = 0;  // keyframes integrated
+  // Keyframes left out because the dense thread was a full queue behind (realtime runs only).
+  std::size_t keyframes_dropped = 0;
   std::size_t enhancement_frames = 0;  // ordinary frames whose key objects were added
   std::size_t background_points = 0;   // stored in the coarse map
   std::size_t object_points = 0;       // stored in the fine map
@@ -65,8 +67,11 @@ struct DenseMapRays {
 class DenseMapper {
  public:
   // Throws Error on bad options. `timings` (may be null) receives "dense_keyframe" per keyframe.
+  // With `never_block` (realtime runs) a keyframe that finds the queue full is left out of the
+  // dense map and counted (keyframes_dropped) instead of stalling the tracking thread that
+  // hands it over; otherwise the hand-over waits for room.
   DenseMapper(const CameraOptions& camera, const DenseMapOptions& options, bool sequential,
-              StageTimings* timings = nullptr);
+              StageTimings* timings = nullptr, bool never_block = false);
   ~DenseMapper();  // Shutdown
   DenseMapper(const DenseMapper&) = delete;
   DenseMapper& operator=(const DenseMapper&) = delete;
@@ -125,6 +130,8 @@ class DenseMapper {
   DenseMapOptions options_;
   bool sequential_;
   StageTimings* timings_;
+  bool never_block_;
+  std::atomic<std::size_t> keyframes_dropped_{0};
 
   PixelRays rays_;
   int frames_before_ = 0;  // enhancement frames before a keyframe

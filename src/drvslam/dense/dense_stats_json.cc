@@ -7,6 +7,7 @@ nlohmann::json DenseStatsJson(const DenseMapStats& s) {
   nlohmann::json json;
   json["frames"] = s.frames;
   json["keyframes"] = s.keyframes;
+  json["keyframes_dropped"] = s.keyframes_dropped;
   json["enhancement_frames"] = s.enhancement_frames;
   json["points"] = s.points;
   json["background_points"] = s.background_points;

@@ -1,5 +1,7 @@
 #include "drvslam/io/realtime_feeder.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
 
@@ -7,10 +9,58 @@
 
 namespace drvslam {
 
-RealtimeFeeder::RealtimeFeeder(const TumDataset& dataset, std::size_t count, double rate)
+RealtimeFeeder::RealtimeFeeder(const TumDataset& dataset, std::size_t count, double rate,
+                               std::size_t preload_bytes)
     : dataset_(dataset) {
   if (!(rate > 0.0)) throw Error("RealtimeFeeder: the playback rate must be positive");
-  thread_ = std::thread([this, count, rate] { Play(count, rate); });
+  thread_ = std::thread([this, count, rate, preload_bytes] { Play(count, rate, preload_bytes); });
+}
+
+namespace {
+
+std::size_t FrameBytes(const RgbdFrame& frame) {
+  return frame.bgr.total() * frame.bgr.elemSize() + frame.depth.total() * frame.depth.elemSize();
+}
+
+}  // namespace
+
+bool RealtimeFeeder::Preload(std::size_t count, std::size_t budget) {
+  if (count == 0) return false;
+  const auto started = std::chrono::steady_clock::now();
+  preloaded_.assign(count, std::nullopt);
+  preloaded_[0] = dataset_.Read(0);
+  if (FrameBytes(*preloaded_[0]) * count > budget) {
+    preloaded_.clear();
+    return false;
+  }
+  // Decoding is independent per frame: every core takes a share (nothing else runs yet). A frame
+  // that fails keeps its error, raised when its turn comes, after the frames before it.
+  preload_errors_.assign(count, nullptr);
+  const std::size_t workers = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> threads;
+  for (std::size_t w = 0; w < workers; ++w) {
+    threads.emplace_back([&, w] {
+      for (std::size_t i = 1 + w; i < count; i += workers) {
+        try {
+          preloaded_[i] = dataset_.Read(i);
+        } catch (...) {
+          preload_errors_[i] = std::current_exception();
+        }
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  preload_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return true;
+}
+
+RgbdFrame RealtimeFeeder::Load(std::size_t i) {
+  if (i < preloaded_.size()) {
+    if (preload_errors_[i]) std::rethrow_exception(preload_errors_[i]);
+    if (preloaded_[i]) return std::move(*preloaded_[i]);
+  }
+  return dataset_.Read(i);
 }
 
 RealtimeFeeder::~RealtimeFeeder() { Stop(); }
@@ -25,7 +75,24 @@ void RealtimeFeeder::Stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void RealtimeFeeder::Play(std::size_t count, double rate) {
+void RealtimeFeeder::Play(std::size_t count, double rate, std::size_t preload_bytes) {
+  try {
+    preloaded_flag_ = Preload(count, preload_bytes);
+    if (preloaded_flag_) {
+      spdlog::info("realtime: {} frames decoded before playback in {:.2f} s", count,
+                   preload_seconds_.load());
+    } else if (count > 0) {
+      spdlog::info(
+          "realtime: the sequence does not fit the {} MB preload budget; frames are "
+          "decoded during playback",
+          preload_bytes >> 20);
+    }
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    error_ = std::current_exception();
+    slot_.Close();
+    return;
+  }
   const auto started = std::chrono::steady_clock::now();
   const double first = count > 0 ? dataset_.Timestamp(0) : 0.0;
   const auto due = [&](std::size_t i) {
@@ -46,7 +113,7 @@ void RealtimeFeeder::Play(std::size_t count, double rate) {
     std::optional<RgbdFrame> frame;
     try {
       // Loaded before its arrival time, as a sensor has the image ready when it delivers it.
-      frame = dataset_.Read(i);
+      frame = Load(i);
     } catch (...) {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = std::current_exception();
@@ -64,6 +131,10 @@ void RealtimeFeeder::Play(std::size_t count, double rate) {
   }
   slot_.Close();
 }
+
+bool RealtimeFeeder::Preloaded() const { return preloaded_flag_; }
+
+double RealtimeFeeder::PreloadSeconds() const { return preload_seconds_; }
 
 std::size_t RealtimeFeeder::SkippedWhileLoading() const {
   std::lock_guard<std::mutex> lock(mutex_);

@@ -5,6 +5,7 @@
 #include <exception>
 #include <optional>
 
+#include "drvslam/core/thread_budget.h"
 #include "drvslam/loop/global_bundle_adjuster.h"
 #include "drvslam/loop/loop_corrector.h"
 #include "drvslam/loop/loop_verifier.h"
@@ -91,6 +92,7 @@ void LoopCloser::Record(const char* stage, double milliseconds) {
 }
 
 void LoopCloser::Run() {
+  LowerCurrentThreadPriority(BackgroundStage::kLoopClosing);
   while (auto keyframe = queue_.Pop()) {
     try {
       Process(*keyframe);

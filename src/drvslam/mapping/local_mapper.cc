@@ -5,6 +5,7 @@
 #include <cassert>
 #include <exception>
 
+#include "drvslam/core/thread_budget.h"
 #include "drvslam/mapping/keyframe_culling.h"
 #include "drvslam/mapping/keyframe_insertion.h"
 #include "drvslam/mapping/local_bundle_adjuster.h"
@@ -116,6 +117,7 @@ void LocalMapper::Resume() {
 }
 
 void LocalMapper::Run() {
+  LowerCurrentThreadPriority(BackgroundStage::kLocalMapping);
   while (auto keyframe = queue_.Pop()) {
     {
       std::unique_lock<std::mutex> lock(pause_mutex_);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/thread_budget.h"
 
 namespace drvslam {
 
@@ -59,6 +60,7 @@ void AsyncSegmenter::Submit(std::size_t frame_index, double timestamp, const cv:
 }
 
 void AsyncSegmenter::WorkerLoop() {
+  LowerCurrentThreadPriority(BackgroundStage::kSegmentation);
   while (std::optional<Job> job = queue_.Pop()) {
     {
       std::lock_guard<std::mutex> lock(mutex_);

@@ -1,0 +1,124 @@
+// RealtimeFeeder's playback: frames decoded ahead when they fit the budget, loaded on the way
+// otherwise; every frame delivered in order to a consumer that keeps up; a frame that cannot be
+// read is reported after the frames before it, in both ways.
+#include "drvslam/io/realtime_feeder.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
+
+#include "drvslam/core/error.h"
+#include "drvslam/io/tum_dataset.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kFrames = 12;
+constexpr double kPeriod = 0.01;  // stamps 10 ms apart,
+constexpr double kRate = 0.25;    // played 40 ms apart: about 0.5 s
+
+std::string Stamp(double t) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.6f", t);
+  return text;
+}
+
+class RealtimeFeederTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("drvslam_realtime_feeder_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "rgb");
+    fs::create_directories(dir_ / "depth");
+    std::string rgb_list, depth_list;
+    for (int k = 0; k < kFrames; ++k) {
+      const std::string stamp = Stamp(100.0 + kPeriod * k);
+      // Each frame's colour encodes its index, so order and identity can be checked.
+      const cv::Mat colour(6, 8, CV_8UC3, cv::Scalar(k, 2 * k, 3 * k));
+      const cv::Mat depth(6, 8, CV_16UC1, cv::Scalar(1000 + k));
+      cv::imwrite((dir_ / ("rgb/" + stamp + ".png")).string(), colour);
+      cv::imwrite((dir_ / ("depth/" + stamp + ".png")).string(), depth);
+      rgb_list += stamp + " rgb/" + stamp + ".png\n";
+      depth_list += stamp + " depth/" + stamp + ".png\n";
+    }
+    std::ofstream(dir_ / "rgb.txt") << rgb_list;
+    std::ofstream(dir_ / "depth.txt") << depth_list;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Plays the whole sequence to a consumer that takes each frame at once; returns the frame
+  // indices received (read from the colour) and whether the feeder preloaded. On a loaded
+  // machine the consumer may still miss a frame: then it is counted as skipped.
+  std::vector<int> Play(std::size_t preload_bytes, bool* preloaded) {
+    const TumDataset dataset(dir_.string());
+    RealtimeFeeder feeder(dataset, kFrames, kRate, preload_bytes);
+    std::vector<int> received;
+    while (std::optional<RgbdFrame> frame = feeder.Next()) {
+      received.push_back(frame->bgr.at<cv::Vec3b>(0, 0)[0]);
+    }
+    *preloaded = feeder.Preloaded();
+    EXPECT_EQ(feeder.Arrived(), static_cast<std::size_t>(kFrames));
+    EXPECT_EQ(received.size() + feeder.Skipped(), static_cast<std::size_t>(kFrames));
+    return received;
+  }
+
+  fs::path dir_;
+};
+
+// Frames arrive in order, each once, and the last one always arrives.
+void ExpectInOrderEndingWith(const std::vector<int>& received, int last) {
+  ASSERT_FALSE(received.empty());
+  for (std::size_t i = 1; i < received.size(); ++i) EXPECT_LT(received[i - 1], received[i]);
+  EXPECT_EQ(received.back(), last);
+  EXPECT_GE(received.size(), static_cast<std::size_t>(last + 1) / 2) << "most frames arrive";
+}
+
+TEST_F(RealtimeFeederTest, PreloadsWhenTheSequenceFitsTheBudget) {
+  bool preloaded = false;
+  const std::vector<int> received = Play(RealtimeFeeder::kDefaultPreloadBytes, &preloaded);
+  EXPECT_TRUE(preloaded);
+  ExpectInOrderEndingWith(received, kFrames - 1);
+}
+
+TEST_F(RealtimeFeederTest, LoadsDuringPlaybackWhenTheSequenceDoesNotFit) {
+  // One frame is 8 x 6 x (3 + 4) bytes: a budget of two frames cannot hold twelve.
+  bool preloaded = true;
+  const std::vector<int> received = Play(2 * 8 * 6 * 7, &preloaded);
+  EXPECT_FALSE(preloaded);
+  ExpectInOrderEndingWith(received, kFrames - 1);
+}
+
+TEST_F(RealtimeFeederTest, AnUnreadableFrameIsReportedAfterTheFramesBeforeIt) {
+  // Frame 7's colour image is not a PNG: frames up to 6 arrive, then its Error, naming the file.
+  const std::string broken = "rgb/" + Stamp(100.0 + kPeriod * 7) + ".png";
+  std::ofstream(dir_ / broken, std::ios::trunc) << "not a png";
+  for (const std::size_t budget : {RealtimeFeeder::kDefaultPreloadBytes, std::size_t{1}}) {
+    const TumDataset dataset(dir_.string());
+    RealtimeFeeder feeder(dataset, kFrames, kRate, budget);
+    std::vector<int> received;
+    try {
+      while (std::optional<RgbdFrame> frame = feeder.Next()) {
+        received.push_back(frame->bgr.at<cv::Vec3b>(0, 0)[0]);
+      }
+      ADD_FAILURE() << "no error for the broken frame (budget " << budget << ")";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(broken), std::string::npos) << e.what();
+    }
+    ExpectInOrderEndingWith(received, 6);
+  }
+}
+
+}  // namespace
+}  // namespace drvslam
