@@ -23,6 +23,7 @@
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
 
 namespace drvslam {
 namespace {

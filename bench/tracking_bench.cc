@@ -12,6 +12,7 @@
 
 #include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
 
 namespace drvslam {
 namespace {

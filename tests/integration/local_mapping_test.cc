@@ -13,6 +13,8 @@
 #include "drvslam/mapping/map_consistency.h"
 #include "drvslam/sequence_runner.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
+#include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {
