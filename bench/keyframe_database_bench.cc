@@ -25,6 +25,7 @@
 #include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
 #include "drvslam/system_options.h"
+#include "drvslam/tracking/frame_factory.h"
 #include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {
