@@ -18,11 +18,15 @@
 #include "drvslam/loop/relocalizer.h"
 #include "drvslam/loop/training_images.h"
 #include "drvslam/loop/vocabulary_io.h"
+#include "drvslam/map/map.h"
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/orb_matcher.h"
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
+#include "drvslam/tracking/frame_factory.h"
+#include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {
 namespace {

@@ -12,6 +12,9 @@
 
 #include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
+#include "drvslam/system_stats.h"
+#include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {
 namespace {

@@ -4,7 +4,8 @@
 function(drvslam_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_library(drvslam_${name} STATIC ${ARG_SOURCES})
-  target_include_directories(drvslam_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_include_directories(drvslam_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>
+                                                    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_options(drvslam_${name} PRIVATE -Wall -Wextra)
   target_link_libraries(drvslam_${name} PUBLIC ${ARG_DEPS})
   set_property(GLOBAL APPEND PROPERTY DRVSLAM_MODULES drvslam_${name})

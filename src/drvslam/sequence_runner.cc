@@ -10,11 +10,15 @@
 #include <thread>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/settings.h"
+#include "drvslam/core/settings_file.h"
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_stats_json.h"
 #include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/io/realtime_feeder.h"
 #include "drvslam/io/tum_dataset.h"
+#include "drvslam/system_options.h"
+#include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {
 namespace {

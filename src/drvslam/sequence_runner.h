@@ -10,6 +10,7 @@
 
 #include "drvslam/dynamic/dynamic_run_setup.h"
 #include "drvslam/system.h"
+#include "drvslam/system_stats.h"
 
 namespace drvslam {
 

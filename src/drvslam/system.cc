@@ -2,11 +2,32 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
 
+#include "drvslam/core/error.h"
+#include "drvslam/core/settings.h"
 #include "drvslam/core/thread_budget.h"
+#include "drvslam/core/timing.h"
+#include "drvslam/dense/dense_mapper.h"
+#include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/io/depth_image.h"
+#include "drvslam/loop/bow_vocabulary.h"
 #include "drvslam/loop/default_vocabulary.h"
+#include "drvslam/loop/keyframe_database.h"
+#include "drvslam/loop/loop_closer.h"
+#include "drvslam/loop/relocalizer.h"
 #include "drvslam/loop/vocabulary_io.h"
+#include "drvslam/map/map.h"
+#include "drvslam/mapping/local_mapper.h"
+#include "drvslam/system_options.h"
+#include "drvslam/system_stats.h"
+#include "drvslam/tracking/frame_factory.h"
+#include "drvslam/tracking/tracker.h"
 
 namespace drvslam {
 namespace {
@@ -26,117 +47,202 @@ std::shared_ptr<const BowVocabulary> LoadRelocalizationVocabulary(
   return std::make_shared<const BowVocabulary>(LoadVocabulary(path));
 }
 
+std::string FormatSize(const cv::Size& size) {
+  return std::to_string(size.width) + "x" + std::to_string(size.height);
+}
+
+// Throws Error naming the first thing about the frame that TrackRGBD cannot take. Called before
+// any stage sees the frame, so a rejected frame changes nothing.
+void CheckFrame(const cv::Mat& bgr, const cv::Mat& depth, double timestamp,
+                const CameraOptions& camera) {
+  if (!std::isfinite(timestamp)) {
+    std::ostringstream text;
+    text << "TrackRGBD: timestamp is " << timestamp << "; expected a finite number of seconds";
+    throw Error(text.str());
+  }
+  if (bgr.empty()) throw Error("TrackRGBD: colour image is empty");
+  if (bgr.type() != CV_8UC3 && bgr.type() != CV_8UC1) {
+    throw Error("TrackRGBD: colour image is " + DescribeImageType(bgr) +
+                "; expected 8-bit 3-channel BGR or 8-bit 1-channel grey");
+  }
+  const cv::Size expected(camera.width, camera.height);
+  if (bgr.size() != expected) {
+    throw Error("TrackRGBD: colour image is " + FormatSize(bgr.size()) +
+                "; Camera.width/height is " + FormatSize(expected));
+  }
+  if (depth.empty()) return;
+  if (!IsDepthImageType(depth.type())) {
+    throw Error("TrackRGBD: depth image is " + DescribeImageType(depth) +
+                "; expected 16-bit unsigned 1-channel (DepthMapFactor per metre) or 32-bit "
+                "float 1-channel (metres)");
+  }
+  if (depth.size() != bgr.size()) {
+    throw Error("TrackRGBD: depth image is " + FormatSize(depth.size()) + "; the colour image is " +
+                FormatSize(bgr.size()));
+  }
+}
+
 }  // namespace
 
-System::System(const Settings& settings, const TrackerOptions& tracker_options,
-               const SystemOptions& options)
-    : settings_(settings),
-      options_(options),
-      frame_factory_(settings),
-      tracker_(map_, tracker_options, settings.camera.fps),
-      local_mapper_(map_, options.mapping, options.sequential, &timings_) {
+struct System::Impl {
+  Impl(const Settings& settings, const TrackerOptions& tracker_options,
+       const SystemOptions& options);
+
+  TrackResult Track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
+  // Hands the tracked frame (and a new keyframe) with its instances to dense mapping.
+  void HandOverToDense(const TrackingResult& result, const cv::Mat& bgr, const cv::Mat& depth,
+                       double timestamp);
+  void Shutdown();
+  SystemStats Stats() const;
+
+  Settings settings;
+  SystemOptions options;
+  Map map;
+  FrameFactory frame_factory;
+  Tracker tracker;
+  StageTimings timings;
+  std::unique_ptr<DynamicFrontEnd> dynamic;
+  std::unique_ptr<ClassTable> dense_classes;  // key-object classes of the segmenter
+  std::unique_ptr<DenseMapper> dense;         // joined before the timings it records into go
+  bool dense_has_map = false;                 // keyframes handed over since the last map reset
+  std::shared_ptr<const BowVocabulary> vocabulary;
+  double vocabulary_load_ms = 0.0;
+  KeyFrameDatabase keyframe_database;
+  std::unique_ptr<Relocalizer> relocalizer;
+  // Fed by local mapping; shut down after it (Shutdown), destroyed after it.
+  std::unique_ptr<LoopCloser> loop_closer;
+  // Declared last: destroyed (its thread joined) first, while the map and timings still exist.
+  LocalMapper local_mapper;
+  double total_ms = 0.0;
+};
+
+System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_options,
+                   const SystemOptions& options_in)
+    : settings(settings_in),
+      options(options_in),
+      frame_factory(settings_in),
+      tracker(map, tracker_options, settings_in.camera.fps),
+      local_mapper(map, options_in.mapping, options_in.sequential, &timings) {
   // The one place the process's OpenCV thread pool is set (core/thread_budget.h).
   ApplyOpenCvThreadBudget(ChooseOpenCvThreads(
       options.dynamic ? options.dynamic->segmentation.dnn_threads : 0, options.sequential));
-  tracker_.SetMappingStatus(&local_mapper_);
+  tracker.SetMappingStatus(&local_mapper);
   if (options.relocalization.enabled) {
     options.relocalization.Check();
     const Stopwatch load;
-    vocabulary_ = LoadRelocalizationVocabulary(options.relocalization);
-    if (vocabulary_) {
-      vocabulary_load_ms_ = load.ElapsedMs();
-      relocalizer_ =
-          std::make_unique<Relocalizer>(vocabulary_, keyframe_database_, options.relocalization);
-      tracker_.SetPlaceRecognition(relocalizer_.get());
+    vocabulary = LoadRelocalizationVocabulary(options.relocalization);
+    if (vocabulary) {
+      vocabulary_load_ms = load.ElapsedMs();
+      relocalizer =
+          std::make_unique<Relocalizer>(vocabulary, keyframe_database, options.relocalization);
+      tracker.SetPlaceRecognition(relocalizer.get());
     }
   }
-  if (options.loop.enabled && !vocabulary_) {
+  if (options.loop.enabled && !vocabulary) {
     spdlog::warn("loop closing needs the bag-of-words vocabulary of relocalization: it is off");
   } else if (options.loop.enabled) {
     LoopCloser::Hooks hooks;
-    hooks.pause_mapping = [this] { local_mapper_.Pause(); };
-    hooks.resume_mapping = [this] { local_mapper_.Resume(); };
-    hooks.map_corrected = [this] { tracker_.NotifyMapCorrected(); };
-    loop_closer_ = std::make_unique<LoopCloser>(map_, keyframe_database_, options.loop,
-                                                options.sequential, std::move(hooks), &timings_);
-    local_mapper_.SetKeyFrameSink([this](const std::shared_ptr<KeyFrame>& keyframe) {
-      loop_closer_->InsertKeyFrame(keyframe);
+    hooks.pause_mapping = [this] { local_mapper.Pause(); };
+    hooks.resume_mapping = [this] { local_mapper.Resume(); };
+    hooks.map_corrected = [this] { tracker.NotifyMapCorrected(); };
+    loop_closer = std::make_unique<LoopCloser>(map, keyframe_database, options.loop,
+                                               options.sequential, std::move(hooks), &timings);
+    local_mapper.SetKeyFrameSink([this](const std::shared_ptr<KeyFrame>& keyframe) {
+      loop_closer->InsertKeyFrame(keyframe);
     });
   }
   if (options.dense && options.dense->enabled) {
     // In realtime runs a dense map that falls behind drops keyframes instead of stalling tracking.
     const bool realtime = options.dynamic && options.dynamic->realtime;
-    dense_ = std::make_unique<DenseMapper>(settings.camera, *options.dense, options.sequential,
-                                           &timings_, /*never_block=*/realtime);
+    dense = std::make_unique<DenseMapper>(settings.camera, *options.dense, options.sequential,
+                                          &timings, /*never_block=*/realtime);
     if (options.dynamic && options.dynamic->segmenter) {
-      dense_classes_ = std::make_unique<ClassTable>(options.dynamic->segmenter->ClassNames(),
-                                                    options.dynamic->segmentation);
+      dense_classes = std::make_unique<ClassTable>(options.dynamic->segmenter->ClassNames(),
+                                                   options.dynamic->segmentation);
     }
   }
   if (options.dynamic) {
     DynamicFrontEndConfig config = *options.dynamic;
     config.sequential = options.sequential;
-    dynamic_ = std::make_unique<DynamicFrontEnd>(std::move(config), settings.orb.n_features, map_,
-                                                 &timings_);
+    dynamic = std::make_unique<DynamicFrontEnd>(std::move(config), settings.orb.n_features, map,
+                                                &timings);
   }
 }
 
-System::~System() { Shutdown(); }
-
-void System::Shutdown() {
-  local_mapper_.Shutdown();
+void System::Impl::Shutdown() {
+  local_mapper.Shutdown();
   // After local mapping, whose last keyframes it still receives; waits for global BA.
-  if (loop_closer_) loop_closer_->Shutdown();
-  if (dense_) dense_->Shutdown();
+  if (loop_closer) loop_closer->Shutdown();
+  if (dense) dense->Shutdown();
 }
 
-TrackingResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
+TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, double timestamp) {
+  CheckFrame(bgr, depth_in, timestamp, settings.camera);
   const Stopwatch total;
+  // Raw sensor depth is converted as the dataset reader converts it; metres pass unchanged.
+  const cv::Mat depth =
+      depth_in.type() == CV_16UC1
+          ? DepthToMetres(depth_in, settings.depth.depth_map_factor, "TrackRGBD: depth image")
+          : depth_in;
   // Dynamic objects: segmentation starts before extraction (on its own thread) and may raise
   // the feature target; with Dynamic.skipMovingExtraction no features are extracted on objects
   // believed moving; the frame's masks then take the moving features out before tracking.
   const int feature_target =
-      dynamic_ ? dynamic_->BeginFrame(timestamp, bgr, tracker_.KeyFrameLikely()) : 0;
-  const cv::Mat skip_mask = dynamic_ ? dynamic_->MovingSkipMask() : cv::Mat();
+      dynamic ? dynamic->BeginFrame(timestamp, bgr, tracker.KeyFrameLikely()) : 0;
+  const cv::Mat skip_mask = dynamic ? dynamic->MovingSkipMask() : cv::Mat();
   const Stopwatch extraction;
-  Frame frame = frame_factory_.Build(timestamp, bgr, depth, skip_mask, feature_target);
-  timings_.Record("extraction", extraction.ElapsedMs());
-  if (dynamic_) frame = dynamic_->Filter(std::move(frame), bgr, depth);
+  Frame frame = frame_factory.Build(timestamp, bgr, depth, skip_mask, feature_target);
+  timings.Record("extraction", extraction.ElapsedMs());
+  if (dynamic) frame = dynamic->Filter(std::move(frame), bgr, depth);
+  TrackResult track;
+  track.timestamp = timestamp;
+  track.frame_id = frame.Id();
   const Stopwatch tracking;
   TrackingResult result;
   {
     // Local mapping writes bundle-adjusted poses under this lock, so a frame is tracked
     // against one consistent state of the map.
-    std::lock_guard<std::mutex> lock(map_.UpdateMutex());
-    result = tracker_.Track(std::move(frame));
+    std::lock_guard<std::mutex> lock(map.UpdateMutex());
+    result = tracker.Track(std::move(frame));
     // Map points matched on still potentially-moving objects are filed, to be culled when the
     // object starts moving.
-    if (dynamic_ && result.state == TrackingState::kOk && tracker_.LastFrame()) {
-      dynamic_->AfterTracking(*tracker_.LastFrame());
+    if (dynamic && result.state == TrackingState::kOk && tracker.LastFrame()) {
+      dynamic->AfterTracking(*tracker.LastFrame());
+    }
+    // A tracked frame becomes the tracker's last frame; a lost one leaves the previous there.
+    const std::optional<Frame>& tracked = tracker.LastFrame();
+    if (result.state == TrackingState::kOk && tracked && tracked->Id() == track.frame_id &&
+        tracked->HasPose()) {
+      track.pose_valid = true;
+      track.T_cw = tracked->Pose();
+      track.T_wc = track.T_cw.Inverse();
     }
   }
-  timings_.Record("tracking", tracking.ElapsedMs());
-  if (dynamic_) dynamic_->NoteKeyFrame(result.new_keyframe != nullptr);
+  timings.Record("tracking", tracking.ElapsedMs());
+  if (dynamic) dynamic->NoteKeyFrame(result.new_keyframe != nullptr);
   // Sequential: the keyframe is mapped here, before the next frame.
-  if (result.new_keyframe) local_mapper_.InsertKeyFrame(result.new_keyframe);
+  if (result.new_keyframe) local_mapper.InsertKeyFrame(result.new_keyframe);
   // Filed for place recognition once mapping has it (its bag of words came with it).
-  if (result.new_keyframe) keyframe_database_.Add(result.new_keyframe);
-  if (dense_) HandOverToDense(result, bgr, depth, timestamp);
-  const double total_ms = total.ElapsedMs();
-  timings_.Record("total", total_ms);
-  total_ms_ += total_ms;
-  return result;
+  if (result.new_keyframe) keyframe_database.Add(result.new_keyframe);
+  if (dense) HandOverToDense(result, bgr, depth, timestamp);
+  const double total_ms_frame = total.ElapsedMs();
+  timings.Record("total", total_ms_frame);
+  total_ms += total_ms_frame;
+  track.state = result.state;
+  track.inliers = result.inliers;
+  track.new_keyframe = std::move(result.new_keyframe);
+  return track;
 }
 
-void System::HandOverToDense(const TrackingResult& result, const cv::Mat& bgr, const cv::Mat& depth,
-                             double timestamp) {
+void System::Impl::HandOverToDense(const TrackingResult& result, const cv::Mat& bgr,
+                                   const cv::Mat& depth, double timestamp) {
   const Stopwatch watch;
   // A new map (tracking was reset) starts a new dense map too.
-  if (dense_has_map_ && map_.KeyFrameCount() == 0) {
-    dense_->Reset();
-    dense_has_map_ = false;
+  if (dense_has_map && map.KeyFrameCount() == 0) {
+    dense->Reset();
+    dense_has_map = false;
   }
-  const std::optional<Frame>& tracked = tracker_.LastFrame();
+  const std::optional<Frame>& tracked = tracker.LastFrame();
   if ((result.state != TrackingState::kOk && !result.new_keyframe) || !tracked ||
       !tracked->HasPose() || depth.empty()) {
     return;
@@ -148,8 +254,8 @@ void System::HandOverToDense(const TrackingResult& result, const cv::Mat& bgr, c
   // Copies: the caller may reuse its buffers; masks are fresh per frame and never written.
   frame.bgr = bgr.clone();
   frame.depth = depth.clone();
-  if (dynamic_) {
-    const DynamicFrameReport& report = dynamic_->LastReport();
+  if (dynamic) {
+    const DynamicFrameReport& report = dynamic->LastReport();
     for (std::size_t k = 0; k < report.instances.size(); ++k) {
       const Instance& instance = report.instances[k];
       DenseInstance d;
@@ -160,7 +266,7 @@ void System::HandOverToDense(const TrackingResult& result, const cv::Mat& bgr, c
         d.moving = report.objects[k].moving;
         d.potentially_moving = report.objects[k].potentially_moving;
       }
-      d.key_object = dense_classes_ && dense_classes_->IsKeyObject(instance.class_id);
+      d.key_object = dense_classes && dense_classes->IsKeyObject(instance.class_id);
       frame.instances.push_back(std::move(d));
     }
     // Moving things no detector named are left out of the dense map too.
@@ -177,38 +283,62 @@ void System::HandOverToDense(const TrackingResult& result, const cv::Mat& bgr, c
   // not hand-off.
   const double build_ms = watch.ElapsedMs();
   if (result.new_keyframe) {
-    dense_->AddKeyFrame(std::move(frame), result.new_keyframe);
-    dense_has_map_ = true;
+    dense->AddKeyFrame(std::move(frame), result.new_keyframe);
+    dense_has_map = true;
   } else {
-    dense_->AddFrame(std::move(frame));
+    dense->AddFrame(std::move(frame));
   }
-  timings_.Record("dense_handoff", options_.sequential ? build_ms : watch.ElapsedMs());
+  timings.Record("dense_handoff", options.sequential ? build_ms : watch.ElapsedMs());
 }
 
-Trajectory System::CameraTrajectory() const { return tracker_.Recorder().CameraTrajectory(); }
-
-Trajectory System::KeyFrameTrajectory() const {
-  return drvslam::KeyFrameTrajectory(map_.KeyFrames());
-}
-
-SystemStats System::Stats() const {
+SystemStats System::Impl::Stats() const {
   SystemStats stats;
-  stats.frames = tracker_.Recorder().FrameCount();
-  stats.tracked = tracker_.Recorder().TrackedCount();
-  stats.keyframes = map_.KeyFrameCount();
-  stats.map_points = map_.MapPointCount();
-  stats.reference_fallbacks = tracker_.ReferenceFallbacks();
-  stats.frames_lost = tracker_.Recorder().LostAfterInitialization();
-  stats.relocalizations = tracker_.Relocalizations();
-  stats.relocalization_attempts = relocalizer_ ? relocalizer_->Attempts() : 0;
-  stats.vocabulary_load_ms = vocabulary_load_ms_;
-  stats.mapping = local_mapper_.Stats();
-  stats.stages = timings_.Summaries();
-  stats.tracking_fps = total_ms_ > 0 ? 1000.0 * stats.frames / total_ms_ : 0.0;
-  if (dynamic_) stats.dynamic = dynamic_->Stats();
-  if (dense_) stats.dense = dense_->Stats();
-  if (loop_closer_) stats.loop = loop_closer_->Stats();
+  stats.frames = tracker.Recorder().FrameCount();
+  stats.tracked = tracker.Recorder().TrackedCount();
+  stats.keyframes = map.KeyFrameCount();
+  stats.map_points = map.MapPointCount();
+  stats.reference_fallbacks = tracker.ReferenceFallbacks();
+  stats.frames_lost = tracker.Recorder().LostAfterInitialization();
+  stats.relocalizations = tracker.Relocalizations();
+  stats.relocalization_attempts = relocalizer ? relocalizer->Attempts() : 0;
+  stats.vocabulary_load_ms = vocabulary_load_ms;
+  stats.mapping = local_mapper.Stats();
+  stats.stages = timings.Summaries();
+  stats.tracking_fps = total_ms > 0 ? 1000.0 * stats.frames / total_ms : 0.0;
+  if (dynamic) stats.dynamic = dynamic->Stats();
+  if (dense) stats.dense = dense->Stats();
+  if (loop_closer) stats.loop = loop_closer->Stats();
   return stats;
 }
+
+System::System(const Settings& settings, const TrackerOptions& tracker_options,
+               const SystemOptions& options)
+    : impl_(std::make_unique<Impl>(settings, tracker_options, options)) {}
+
+System::~System() { Shutdown(); }
+
+void System::Shutdown() { impl_->Shutdown(); }
+
+TrackResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
+  return impl_->Track(bgr, depth, timestamp);
+}
+
+Trajectory System::CameraTrajectory() const { return impl_->tracker.Recorder().CameraTrajectory(); }
+
+Trajectory System::KeyFrameTrajectory() const {
+  return drvslam::KeyFrameTrajectory(impl_->map.KeyFrames());
+}
+
+SystemStats System::Stats() const { return impl_->Stats(); }
+
+const Map& System::GetMap() const { return impl_->map; }
+
+const DynamicFrontEnd* System::Dynamic() const { return impl_->dynamic.get(); }
+
+DenseMapper* System::Dense() { return impl_->dense.get(); }
+
+const std::shared_ptr<const BowVocabulary>& System::Vocabulary() const { return impl_->vocabulary; }
+
+KeyFrameDatabase& System::KeyFrames() { return impl_->keyframe_database; }
 
 }  // namespace drvslam

@@ -1,66 +1,52 @@
 // System: the facade that owns the map and the pipeline threads; the only thing apps need.
-// Feed it RGB-D frames in time order with TrackRGBD; call Shutdown (which waits for local
-// mapping to finish its queue) before reading the final trajectories and statistics. Tracking
-// runs on the caller's thread, local mapping on its own (or after each keyframe on the caller's
-// thread in sequential mode); loop closing and dense mapping attach here as they arrive.
+// Feed it RGB-D frames in time order with TrackRGBD, which returns each frame's pose and
+// tracking state; call Shutdown (which waits for local mapping to finish its queue) before
+// reading the final trajectories and statistics. Tracking runs on the caller's thread, local
+// mapping on its own (or after each keyframe on the caller's thread in sequential mode); loop
+// closing and dense mapping run on theirs.
+//
+// Constructing one takes the settings (core/settings.h: LoadSettings), the tracker's options
+// (tracking/tracker_options.h: LoadTrackerOptions) and SystemOptions (system_options.h);
+// Stats() returns SystemStats (system_stats.h). This header declares only the API, so a program
+// that tracks frames compiles against it alone.
 #pragma once
 
 #include <memory>
-#include <opencv2/core.hpp>
-#include <optional>
-#include <string>
+#include <opencv2/core/mat.hpp>
 
-#include "drvslam/core/settings.h"
-#include "drvslam/core/timing.h"
-#include "drvslam/dense/dense_mapper.h"
-#include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/core/se3.h"
 #include "drvslam/io/trajectory_io.h"
-#include "drvslam/loop/bow_vocabulary.h"
-#include "drvslam/loop/keyframe_database.h"
-#include "drvslam/loop/loop_closer.h"
-#include "drvslam/loop/relocalizer.h"
-#include "drvslam/map/map.h"
-#include "drvslam/mapping/local_mapper.h"
-#include "drvslam/tracking/frame_factory.h"
-#include "drvslam/tracking/tracker.h"
+#include "drvslam/tracking/tracking_state.h"
 
 namespace drvslam {
 
-struct SystemOptions {
-  // Run every stage in order on the caller's thread (deterministic, bit-identical results).
-  bool sequential = false;
-  LocalMappingOptions mapping;
-  // Dynamic-object handling (segmentation, motion consistency, feature removal); nullopt runs
-  // plain ORB-SLAM2 tracking. Its `sequential` follows the field above.
-  std::optional<DynamicFrontEndConfig> dynamic;
-  // The dense mapping thread (DenseMap.*); nullopt or enabled = false: no dense map.
-  std::optional<DenseMapOptions> dense;
-  // Relocalization when tracking is lost (needs a vocabulary: the file named there or the
-  // build's default; without either it is off, with a warning).
-  RelocalizationOptions relocalization;
-  // The loop closing thread (LoopClosing.*); it needs the vocabulary relocalization loads, so
-  // with relocalization off (or no vocabulary) it is off too, with a warning.
-  LoopClosingOptions loop;
-};
+class BowVocabulary;
+class DenseMapper;
+class DynamicFrontEnd;
+class KeyFrame;
+class KeyFrameDatabase;
+class Map;
+struct Settings;
+struct SystemOptions;
+struct SystemStats;
+struct TrackerOptions;
 
-struct SystemStats {
-  std::size_t frames = 0;
-  std::size_t tracked = 0;
-  std::size_t keyframes = 0;
-  std::size_t map_points = 0;
-  int reference_fallbacks = 0;
-  std::size_t frames_lost = 0;  // frames after initialization that were not tracked
-  int relocalizations = 0;      // times tracking was lost and found again
-  int relocalization_attempts = 0;
-  double vocabulary_load_ms = 0.0;  // 0 when no vocabulary was loaded
-  LocalMappingStats mapping;
-  std::map<std::string, TimingSummary> stages;  // per-stage ms
-  // Frames per second of the time spent inside TrackRGBD calls only (not reading images, not
-  // waiting for mapping to drain); a run's wall-clock throughput is RunSummary::fps.
-  double tracking_fps = 0.0;
-  std::optional<DynamicStats> dynamic;   // when dynamic handling ran
-  std::optional<DenseMapStats> dense;    // when dense mapping ran
-  std::optional<LoopClosingStats> loop;  // when loop closing ran
+// What TrackRGBD says about one frame.
+struct TrackResult {
+  double timestamp = 0.0;  // as given
+  // The frame's id: accepted frames are numbered from 0 in call order (rejected ones take none).
+  long frame_id = -1;
+  TrackingState state = TrackingState::kNotInitialized;  // after this frame
+  // True when this frame was tracked (state kOk; the first frame of a map is the origin): T_cw
+  // and T_wc then hold its pose in the map's world frame as tracking estimated it. Local bundle
+  // adjustment and loop closing later refine the poses CameraTrajectory() reports. False (lost,
+  // or not initialized yet): both are the identity.
+  bool pose_valid = false;
+  SE3 T_cw;  // world -> camera
+  SE3 T_wc;  // camera -> world: the camera's pose
+  // Map points the pose was estimated from (after initialization: the new map's points).
+  int inliers = 0;
+  std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe
 };
 
 class System {
@@ -68,9 +54,16 @@ class System {
   System(const Settings& settings, const TrackerOptions& tracker_options,
          const SystemOptions& options);
   ~System();  // calls Shutdown
+  System(const System&) = delete;
+  System& operator=(const System&) = delete;
 
-  // bgr: 8-bit BGR of the configured size; depth: CV_32F metres (0 = none).
-  TrackingResult TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
+  // bgr: CV_8UC3 BGR (or CV_8UC1 grey) of the size the settings give (Camera.width/height).
+  // depth: the same size, either CV_16UC1 raw sensor values (DepthMapFactor per metre, 0 = no
+  // measurement; as ORB-SLAM2 takes them) or CV_32FC1 metres (0 = none); or empty (no depth:
+  // nothing is tracked). timestamp: seconds, finite. A frame that breaks any of this throws
+  // drvslam::Error naming the problem before anything changes, so the next good frame is
+  // tracked as if the bad one had never come.
+  TrackResult TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
 
   // Lets local mapping (and dense mapping) finish every queued keyframe and stops its thread;
   // later frames are tracked without mapping. Idempotent.
@@ -80,39 +73,19 @@ class System {
   Trajectory CameraTrajectory() const;
   Trajectory KeyFrameTrajectory() const;
   SystemStats Stats() const;
-  const Map& GetMap() const { return map_; }
+  const Map& GetMap() const;
   // The dynamic-object stage (null when off); its LastReport() describes the last frame.
-  const DynamicFrontEnd* Dynamic() const { return dynamic_.get(); }
+  const DynamicFrontEnd* Dynamic() const;
   // The dense mapping thread (null when off); Assemble() gives the map with current poses.
-  DenseMapper* Dense() { return dense_.get(); }
+  DenseMapper* Dense();
   // The bag-of-words vocabulary (null when none was loaded) and the database of every keyframe
   // tracking created, for place recognition.
-  const std::shared_ptr<const BowVocabulary>& Vocabulary() const { return vocabulary_; }
-  KeyFrameDatabase& KeyFrames() { return keyframe_database_; }
+  const std::shared_ptr<const BowVocabulary>& Vocabulary() const;
+  KeyFrameDatabase& KeyFrames();
 
  private:
-  Settings settings_;
-  SystemOptions options_;
-  Map map_;
-  FrameFactory frame_factory_;
-  Tracker tracker_;
-  StageTimings timings_;
-  std::unique_ptr<DynamicFrontEnd> dynamic_;
-  // Hands the tracked frame (and a new keyframe) with its instances to dense mapping.
-  void HandOverToDense(const TrackingResult& result, const cv::Mat& bgr, const cv::Mat& depth,
-                       double timestamp);
-  std::unique_ptr<ClassTable> dense_classes_;  // key-object classes of the segmenter
-  std::unique_ptr<DenseMapper> dense_;         // joined before the timings it records into go
-  bool dense_has_map_ = false;                 // keyframes handed over since the last map reset
-  std::shared_ptr<const BowVocabulary> vocabulary_;
-  double vocabulary_load_ms_ = 0.0;
-  KeyFrameDatabase keyframe_database_;
-  std::unique_ptr<Relocalizer> relocalizer_;
-  // Fed by local mapping; shut down after it (System::Shutdown), destroyed after it.
-  std::unique_ptr<LoopCloser> loop_closer_;
-  // Declared last: destroyed (its thread joined) first, while the map and timings still exist.
-  LocalMapper local_mapper_;
-  double total_ms_ = 0.0;
+  struct Impl;  // the map, the pipeline stages and their threads (system.cc)
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace drvslam

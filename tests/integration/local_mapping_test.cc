@@ -13,6 +13,8 @@
 #include "drvslam/mapping/map_consistency.h"
 #include "drvslam/sequence_runner.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
+#include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {
@@ -95,7 +97,7 @@ TEST_F(LocalMappingTest, MapIsConsistentAfterEveryKeyFrame) {
   int keyframes = 0;
   for (std::size_t i = 0; i < 45; ++i) {
     const RgbdFrame frame = dataset.Read(i);
-    const TrackingResult result = system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
+    const TrackResult result = system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
     if (!result.new_keyframe) continue;
     ++keyframes;
     const auto problems = CheckMapConsistency(system.GetMap());

@@ -18,6 +18,8 @@
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/semantic/ground_truth_segmenter.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
+#include "drvslam/system_stats.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
 

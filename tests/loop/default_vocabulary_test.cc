@@ -30,10 +30,10 @@ TEST(DefaultVocabularyTest, EnvironmentVariableComesFirst) {
   unsetenv(kDefaultVocabularyEnvironment);
 }
 
-TEST(DefaultVocabularyTest, LooksBesideTheExecutableAndInTheBuildTree) {
+TEST(DefaultVocabularyTest, LooksBesideTheExecutableInTheBuildTreeAndInTheInstallPrefix) {
   unsetenv(kDefaultVocabularyEnvironment);
   const std::vector<std::string> candidates = DefaultVocabularyCandidates();
-  ASSERT_EQ(candidates.size(), 2u);
+  ASSERT_EQ(candidates.size(), 3u);
   const std::string suffix = "/share/drvslam/default_vocab.bin";
   for (const std::string& candidate : candidates) {
     ASSERT_GE(candidate.size(), suffix.size());

@@ -13,6 +13,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/io/association.h"
+#include "drvslam/io/depth_image.h"
 #include "drvslam/io/text_lines.h"
 
 namespace drvslam {
@@ -40,37 +41,6 @@ std::string FormatValue(double value) {
 
 std::string FormatSize(const cv::Size& size) {
   return std::to_string(size.width) + "x" + std::to_string(size.height);
-}
-
-std::string DescribeType(const cv::Mat& image) {
-  std::string depth;
-  switch (image.depth()) {
-    case CV_8U:
-      depth = "8-bit unsigned";
-      break;
-    case CV_8S:
-      depth = "8-bit signed";
-      break;
-    case CV_16U:
-      depth = "16-bit unsigned";
-      break;
-    case CV_16S:
-      depth = "16-bit signed";
-      break;
-    case CV_32S:
-      depth = "32-bit integer";
-      break;
-    case CV_32F:
-      depth = "32-bit float";
-      break;
-    case CV_64F:
-      depth = "64-bit float";
-      break;
-    default:
-      depth = "type " + std::to_string(image.depth());
-      break;
-  }
-  return depth + " " + std::to_string(image.channels()) + "-channel";
 }
 
 // Non-throwing filesystem queries: a permission problem must surface as our own Error below.
@@ -140,7 +110,7 @@ cv::Mat LoadImage(const std::string& path, const std::string& what) {
 cv::Mat LoadColour(const std::string& path, bool rgb_order) {
   const cv::Mat raw = LoadImage(path, "colour image");
   if (raw.depth() != CV_8U) {
-    throw Error(path + ": colour image is " + DescribeType(raw) +
+    throw Error(path + ": colour image is " + DescribeImageType(raw) +
                 "; expected 8-bit with 1, 3 or 4 channels");
   }
   cv::Mat bgr;
@@ -159,39 +129,14 @@ cv::Mat LoadColour(const std::string& path, bool rgb_order) {
       cv::cvtColor(raw, bgr, rgb_order ? cv::COLOR_RGBA2BGR : cv::COLOR_BGRA2BGR);
       break;
     default:
-      throw Error(path + ": colour image is " + DescribeType(raw) +
+      throw Error(path + ": colour image is " + DescribeImageType(raw) +
                   "; expected 8-bit with 1, 3 or 4 channels");
   }
   return bgr;
 }
 
 cv::Mat LoadDepth(const std::string& path, double depth_map_factor) {
-  const cv::Mat raw = LoadImage(path, "depth image");
-  cv::Mat metres(raw.size(), CV_32FC1);
-  if (raw.type() == CV_16UC1) {
-    // Divide in double, then round once to float, so a stored value maps to the nearest float of
-    // raw / factor (convertTo's float scale would round twice).
-    for (int r = 0; r < raw.rows; ++r) {
-      const std::uint16_t* in = raw.ptr<std::uint16_t>(r);
-      float* out = metres.ptr<float>(r);
-      for (int c = 0; c < raw.cols; ++c) {
-        out[c] = static_cast<float>(static_cast<double>(in[c]) / depth_map_factor);
-      }
-    }
-  } else if (raw.type() == CV_32FC1) {
-    // Float depth is already in metres; NaN, inf and negative values mean "no measurement".
-    for (int r = 0; r < raw.rows; ++r) {
-      const float* in = raw.ptr<float>(r);
-      float* out = metres.ptr<float>(r);
-      for (int c = 0; c < raw.cols; ++c) {
-        out[c] = (std::isfinite(in[c]) && in[c] > 0.0f) ? in[c] : 0.0f;
-      }
-    }
-  } else {
-    throw Error(path + ": depth image is " + DescribeType(raw) +
-                "; expected 16-bit unsigned 1-channel (or 32-bit float 1-channel metres)");
-  }
-  return metres;
+  return DepthToMetres(LoadImage(path, "depth image"), depth_map_factor, path + ": depth image");
 }
 
 }  // namespace

@@ -34,6 +34,11 @@ std::vector<std::string> DefaultVocabularyCandidates() {
 #ifdef DRVSLAM_DEFAULT_VOCABULARY_PATH
   candidates.emplace_back(DRVSLAM_DEFAULT_VOCABULARY_PATH);
 #endif
+  // Where `cmake --install` puts it (cmake/DrvslamInstall.cmake), for programs linking the
+  // installed library from their own folders.
+#ifdef DRVSLAM_INSTALLED_VOCABULARY_PATH
+  candidates.emplace_back(DRVSLAM_INSTALLED_VOCABULARY_PATH);
+#endif
   return candidates;
 }
 

@@ -19,7 +19,7 @@ inline constexpr char kDefaultVocabularyEnvironment[] = "DRVSLAM_DEFAULT_VOCABUL
 // Where the default vocabulary is looked for, in order: $DRVSLAM_DEFAULT_VOCABULARY when set;
 // ../share/drvslam/default_vocab.bin next to the running executable (works for bin/, tests/
 // and bench/ of the build tree and for an installed tree); the build tree's share/drvslam as
-// compiled in.
+// compiled in; the install prefix's share/drvslam as configured (CMAKE_INSTALL_PREFIX).
 std::vector<std::string> DefaultVocabularyCandidates();
 
 // The first candidate that is a regular file; empty when there is none (e.g. the build found

@@ -17,13 +17,10 @@
 #include "drvslam/tracking/mapping_status.h"
 #include "drvslam/tracking/place_recognition.h"
 #include "drvslam/tracking/tracker_options.h"
+#include "drvslam/tracking/tracking_state.h"
 #include "drvslam/tracking/trajectory_recorder.h"
 
 namespace drvslam {
-
-enum class TrackingState { kNotInitialized, kOk, kLost };
-
-const char* TrackingStateName(TrackingState state);
 
 struct TrackingResult {
   TrackingState state = TrackingState::kNotInitialized;

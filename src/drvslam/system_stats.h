@@ -1,0 +1,38 @@
+// SystemStats: what System::Stats() reports about a run so far: frames, map size, per-stage
+// timings and the statistics of each stage that ran.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "drvslam/core/timing.h"
+#include "drvslam/dense/dense_mapper.h"
+#include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/loop/loop_closer.h"
+#include "drvslam/mapping/local_mapper.h"
+
+namespace drvslam {
+
+struct SystemStats {
+  std::size_t frames = 0;
+  std::size_t tracked = 0;
+  std::size_t keyframes = 0;
+  std::size_t map_points = 0;
+  int reference_fallbacks = 0;
+  std::size_t frames_lost = 0;  // frames after initialization that were not tracked
+  int relocalizations = 0;      // times tracking was lost and found again
+  int relocalization_attempts = 0;
+  double vocabulary_load_ms = 0.0;  // 0 when no vocabulary was loaded
+  LocalMappingStats mapping;
+  std::map<std::string, TimingSummary> stages;  // per-stage ms
+  // Frames per second of the time spent inside TrackRGBD calls only (not reading images, not
+  // waiting for mapping to drain); a run's wall-clock throughput is RunSummary::fps.
+  double tracking_fps = 0.0;
+  std::optional<DynamicStats> dynamic;   // when dynamic handling ran
+  std::optional<DenseMapStats> dense;    // when dense mapping ran
+  std::optional<LoopClosingStats> loop;  // when loop closing ran
+};
+
+}  // namespace drvslam
