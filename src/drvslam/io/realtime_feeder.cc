@@ -7,8 +7,9 @@
 
 namespace drvslam {
 
-RealtimeFeeder::RealtimeFeeder(const TumDataset& dataset, std::size_t count, double rate)
-    : dataset_(dataset) {
+RealtimeFeeder::RealtimeFeeder(const TumDataset& dataset, std::size_t count, double rate,
+                               FrameRejections* rejections)
+    : dataset_(dataset), rejections_(rejections) {
   if (!(rate > 0.0)) throw Error("RealtimeFeeder: the playback rate must be positive");
   thread_ = std::thread([this, count, rate] { Play(count, rate); });
 }
@@ -47,6 +48,23 @@ void RealtimeFeeder::Play(std::size_t count, double rate) {
     try {
       // Loaded before its arrival time, as a sensor has the image ready when it delivers it.
       frame = dataset_.Read(i);
+      if (rejections_) rejections_->Accept();
+    } catch (const FrameError& error) {
+      if (!rejections_) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        break;
+      }
+      try {
+        rejections_->Reject(i, error);
+      } catch (...) {
+        // Too many bad frames in a row: the delivery ends with that Error.
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        break;
+      }
+      ++i;
+      continue;
     } catch (...) {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = std::current_exception();
