@@ -77,6 +77,19 @@ TEST_F(MapConsistencyTest, ABadPointLeftInTheMap) {
   EXPECT_TRUE(CheckMapConsistency(map_.map).empty());
 }
 
+TEST_F(MapConsistencyTest, ABadPointGainsNoObservation) {
+  point_->SetBad();
+  ASSERT_EQ(point_->ObservationCount(), 0);
+  EXPECT_FALSE(point_->AddObservation(keyframe_, static_cast<int>(slot_)));
+  EXPECT_EQ(point_->ObservationCount(), 0);
+  EXPECT_EQ(point_->IndexIn(keyframe_->Id()), -1);
+  // A good point still takes observations.
+  const std::shared_ptr<MapPoint> good = map_.map.MapPoints().front();
+  ASSERT_FALSE(good->IsBad());
+  EXPECT_TRUE(good->AddObservation(keyframe_, 7));
+  EXPECT_EQ(good->IndexIn(keyframe_->Id()), 7);
+}
+
 TEST_F(MapConsistencyTest, APointMissingFromTheMap) {
   map_.map.EraseMapPoint(point_->Id());
   EXPECT_TRUE(Mentions(CheckMapConsistency(map_.map), "is not in the map"));
