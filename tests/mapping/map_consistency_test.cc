@@ -84,8 +84,11 @@ TEST_F(MapConsistencyTest, ABadPointGainsNoObservation) {
   EXPECT_EQ(point_->ObservationCount(), 0);
   EXPECT_EQ(point_->IndexIn(keyframe_->Id()), -1);
   // A good point still takes observations.
-  const std::shared_ptr<MapPoint> good = map_.map.MapPoints().front();
-  ASSERT_FALSE(good->IsBad());
+  std::shared_ptr<MapPoint> good;
+  for (const auto& point : map_.map.MapPoints()) {
+    if (!point->IsBad()) good = point;
+  }
+  ASSERT_TRUE(good);
   EXPECT_TRUE(good->AddObservation(keyframe_, 7));
   EXPECT_EQ(good->IndexIn(keyframe_->Id()), 7);
 }
