@@ -15,6 +15,7 @@
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_stats_json.h"
 #include "drvslam/dynamic/dynamic_stats_json.h"
+#include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/realtime_feeder.h"
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/system_options.h"
@@ -84,6 +85,25 @@ void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point sta
   WriteStatsJson((out_dir / "stats.json").string(), *summary);
 }
 
+void FileRejections(const FrameRejections& rejections, RunSummary* summary) {
+  summary->frames_rejected = rejections.Count();
+  summary->frames_rejected_by_fault = rejections.CountsByFault();
+  summary->frames_rejected_examples = rejections.Examples();
+}
+
+// After a failure: keeps what was tracked so far. A failure while writing must not hide the one
+// that stopped the run, so it is only logged.
+void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::time_point started,
+                              RunSummary* summary) {
+  try {
+    WriteOutputs(system, out_dir, started, summary);
+  } catch (const std::exception& error) {
+    spdlog::error("could not write the outputs after the failure: {}", error.what());
+  } catch (...) {
+    spdlog::error("could not write the outputs after the failure");
+  }
+}
+
 }  // namespace
 
 RunSummary RunSequence(const RunOptions& options,
@@ -149,6 +169,8 @@ RunSummary RunSequence(const RunOptions& options,
     }
     if (progress) progress(frame.index + 1, total);
   };
+  FrameRejections rejections(kMaxConsecutiveRejectedFrames);
+  for (const FrameError& dropped : dataset.DroppedEntries()) rejections.RejectListEntry(dropped);
   std::optional<RealtimeFeeder> feeder;
   // Stops the feeder and files what it skipped (also when the run failed).
   const auto finish_feeder = [&] {
@@ -159,15 +181,18 @@ RunSummary RunSequence(const RunOptions& options,
     summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
     feeder.reset();
   };
+  // The frame being read or tracked, for the message of an unexpected failure.
+  std::size_t current = 0;
   const Clock::time_point started = Clock::now();
   try {
     if (paced) {
-      feeder.emplace(dataset, total);
+      feeder.emplace(dataset, total, 1.0, &rejections);
       while (std::optional<RgbdFrame> frame = feeder->Next()) {
         if (stop && stop->load()) {
           summary.interrupted = true;
           break;
         }
+        current = frame->index;
         track(*frame);
       }
     } else {
@@ -176,17 +201,51 @@ RunSummary RunSequence(const RunOptions& options,
           summary.interrupted = true;
           break;
         }
-        track(dataset.Read(i));
+        current = i;
+        std::optional<RgbdFrame> frame;
+        try {
+          frame = dataset.Read(i);
+          rejections.Accept();
+        } catch (const FrameError& error) {
+          rejections.Reject(i, error);  // throws when too many in a row
+          continue;
+        }
+        track(*frame);
       }
     }
   } catch (const Error&) {
-    // Keep what was tracked so far, then report the failure.
+    // Bad input: keep what was tracked so far, then report the failure.
     finish_feeder();
-    WriteOutputs(system, out_dir, started, &summary);
+    FileRejections(rejections, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    throw;
+  } catch (const std::exception& error) {
+    // Not bad input (cv::Exception, std::bad_alloc, a solver failure): the trajectory is kept
+    // all the same, and the failure goes on to the caller (the CLI exits non-zero).
+    spdlog::error("run failed at frame {} of {} ({}); writing the outputs computed so far to {}",
+                  current, total, error.what(), out_dir.string());
+    finish_feeder();
+    FileRejections(rejections, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    throw;
+  } catch (...) {
+    spdlog::error(
+        "run failed at frame {} of {} (unknown exception); writing the outputs "
+        "computed so far to {}",
+        current, total, out_dir.string());
+    finish_feeder();
+    FileRejections(rejections, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, &summary);
     throw;
   }
   finish_feeder();
+  FileRejections(rejections, &summary);
   WriteOutputs(system, out_dir, started, &summary);
+  if (rejections.Accepted() == 0 && rejections.Count() > 0 && !summary.interrupted) {
+    throw Error(options.dataset + ": none of the " + std::to_string(total) +
+                " frames could be used (" + std::to_string(rejections.Count()) +
+                " rejected; see stats.json frames_rejected_examples)");
+  }
   return summary;
 }
 
@@ -202,6 +261,21 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["frames_lost"] = s.frames_lost;
   json["frames_skipped"] = summary.frames_skipped;
   json["frames_skipped_loading"] = summary.frames_skipped_loading;
+  json["frames_rejected"] = summary.frames_rejected;
+  json["frames_rejected_by_fault"] = nlohmann::json::object();
+  for (const auto& [fault, count] : summary.frames_rejected_by_fault) {
+    json["frames_rejected_by_fault"][fault] = count;
+  }
+  nlohmann::json rejected = nlohmann::json::array();
+  for (const RejectedFrame& frame : summary.frames_rejected_examples) {
+    rejected.push_back(
+        {{"frame", frame.index == RejectedFrame::kListEntry ? nlohmann::json(nullptr)
+                                                            : nlohmann::json(frame.index)},
+         {"fault", FrameFaultName(frame.fault)},
+         {"file", frame.path},
+         {"message", frame.message}});
+  }
+  json["frames_rejected_examples"] = rejected;
   json["max_arrival_lag_ms"] = summary.max_arrival_lag_ms;
   json["relocalization"] = {{"relocalizations", s.relocalizations},
                             {"attempts", s.relocalization_attempts},

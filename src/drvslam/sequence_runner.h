@@ -5,10 +5,13 @@
 
 #include <atomic>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "drvslam/dynamic/dynamic_run_setup.h"
+#include "drvslam/io/frame_rejections.h"
 #include "drvslam/system.h"
 #include "drvslam/system_stats.h"
 
@@ -32,6 +35,11 @@ struct RunOptions {
   std::string loop;
 };
 
+// A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
+// entry whose timestamp repeats or goes back) is skipped with one warning and counted; more than
+// this many in a row stop the run with an Error (the sequence is unreadable, not hiccuping).
+inline constexpr std::size_t kMaxConsecutiveRejectedFrames = 30;
+
 struct RunSummary {
   SystemStats stats;
   std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
@@ -43,6 +51,11 @@ struct RunSummary {
   std::size_t frames_skipped_loading = 0;
   // --realtime: the most a frame arrived after its timestamp because loading it fell behind.
   double max_arrival_lag_ms = 0.0;
+  // Frames (and list entries) skipped because they could not be used, per FrameFaultName, and
+  // the first FrameRejections::kKeptExamples of them.
+  std::size_t frames_rejected = 0;
+  std::map<std::string, std::size_t> frames_rejected_by_fault;
+  std::vector<RejectedFrame> frames_rejected_examples;
   std::string camera_trajectory_path;
   std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
   // Where the masks came from (DynamicRunSetup::segmenter_label), and whether they were the
@@ -63,7 +76,9 @@ struct RunSummary {
 };
 
 // progress(done, total) is called after every frame; `stop` (may be null) ends the loop early
-// when it becomes true. Throws Error for bad input, after writing what was computed.
+// when it becomes true. Frames that cannot be used are skipped (kMaxConsecutiveRejectedFrames).
+// Throws Error for bad input, and lets any other exception through, after writing what was
+// computed in both cases; throws Error after writing when no frame at all could be used.
 RunSummary RunSequence(const RunOptions& options,
                        const std::function<void(std::size_t, std::size_t)>& progress = nullptr,
                        const std::atomic<bool>* stop = nullptr);
@@ -72,7 +87,9 @@ RunSummary RunSequence(const RunOptions& options,
 // fps (wall-clock throughput of the whole run: frames / wall_s, see RunSummary), wall_s (the
 // run's wall time in seconds, frame loop and shutdown drain, writing the outputs excluded),
 // tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost,
-// frames_skipped, frames_skipped_loading, max_arrival_lag_ms, segmenter.{label, oracle},
+// frames_skipped, frames_skipped_loading, max_arrival_lag_ms, frames_rejected,
+// frames_rejected_by_fault.{fault: count}, frames_rejected_examples[{frame (null for a list
+// entry), fault, file, message}], segmenter.{label, oracle},
 // relocalization.{relocalizations,attempts,vocabulary_load_ms},
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "drvslam/core/error.h"
@@ -228,6 +229,39 @@ TEST(MotionConsistencyTest, TheSceneModelIsFittedOnUndistortedPoints) {
   const Counts counts = CountByLabel(undistorted, pair);
   EXPECT_GE(counts.patch_moving, 0.9 * counts.patch)
       << counts.patch_moving << " of " << counts.patch;
+}
+
+TEST(MotionConsistencyTest, NaNDepthUnderATrackIsNoMeasurement) {
+  // A library caller's depth may hold NaN (no measurement). NaN at a track's own pixel, with
+  // valid neighbours, must keep the track out of the reprojection test, as a zero depth does;
+  // NaN compares false, so it slipped past the checks and was backprojected into NaN points.
+  CameraOptions lens;
+  lens.fx = lens.fy = 525.0;
+  lens.cx = 319.5;
+  lens.cy = 239.5;
+  const PinholeCamera camera(lens);
+  Camera prev_camera;
+  Camera cur_camera;
+  cur_camera.center = {0.05, 0.0, 0.03};
+  const Pair pair = MakePair(prev_camera, cur_camera, {0.03, 0.03});
+  DynamicOptions options;
+  const MotionConsistency consistency(options);
+  const FlowImage a = BuildFlowImage(pair.prev.gray, options);
+  const FlowImage b = BuildFlowImage(pair.cur.gray, options);
+  const MotionConsistencyResult measured =
+      consistency.Run(a, b, pair.points, pair.ids, {}, {}, pair.prev.depth, &camera);
+  ASSERT_TRUE(measured.pose_ok);
+  ASSERT_GE(measured.pose_pairs, options.min_model_pairs);
+
+  for (const float missing : {0.0f, std::numeric_limits<float>::quiet_NaN()}) {
+    cv::Mat depth = pair.prev.depth.clone();
+    for (const cv::Point2f& p : pair.points) depth.at<float>(cvRound(p.y), cvRound(p.x)) = missing;
+    const MotionConsistencyResult result =
+        consistency.Run(a, b, pair.points, pair.ids, {}, {}, depth, &camera);
+    EXPECT_EQ(result.pose_pairs, 0) << "depth " << missing;
+    EXPECT_FALSE(result.pose_ok) << "depth " << missing;
+    EXPECT_EQ(result.reprojection_moving, 0) << "depth " << missing;
+  }
 }
 
 TEST(MotionConsistencyTest, EpipolarDistanceOfAKnownLine) {

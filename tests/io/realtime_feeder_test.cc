@@ -63,7 +63,7 @@ class RealtimeFeederTest : public ::testing::Test {
   // machine the consumer may still miss a frame: then it is counted as skipped.
   std::vector<int> Play(std::size_t preload_bytes, bool* preloaded) {
     const TumDataset dataset(dir_.string());
-    RealtimeFeeder feeder(dataset, kFrames, kRate, preload_bytes);
+    RealtimeFeeder feeder(dataset, kFrames, kRate, nullptr, preload_bytes);
     std::vector<int> received;
     while (std::optional<RgbdFrame> frame = feeder.Next()) {
       received.push_back(frame->bgr.at<cv::Vec3b>(0, 0)[0]);
@@ -106,7 +106,7 @@ TEST_F(RealtimeFeederTest, AnUnreadableFrameIsReportedAfterTheFramesBeforeIt) {
   std::ofstream(dir_ / broken, std::ios::trunc) << "not a png";
   for (const std::size_t budget : {RealtimeFeeder::kDefaultPreloadBytes, std::size_t{1}}) {
     const TumDataset dataset(dir_.string());
-    RealtimeFeeder feeder(dataset, kFrames, kRate, budget);
+    RealtimeFeeder feeder(dataset, kFrames, kRate, nullptr, budget);
     std::vector<int> received;
     try {
       while (std::optional<RgbdFrame> frame = feeder.Next()) {

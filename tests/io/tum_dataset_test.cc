@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
+#include "drvslam/io/frame_fault.h"
 
 namespace drvslam {
 namespace {
@@ -124,6 +125,22 @@ class TumDatasetTest : public ::testing::Test {
                        const TumDatasetOptions& options = {}) {
     const TumDataset dataset(Folder(), options);  // opening must succeed: images load lazily
     ExpectError([&] { dataset.Read(index); }, needles);
+  }
+  // As ExpectReadError, and the error is a FrameError of kind `fault` for file `path`.
+  void ExpectFrameError(std::size_t index, FrameFault fault, const std::string& path,
+                        const std::vector<std::string>& needles,
+                        const TumDatasetOptions& options = {}) {
+    ExpectReadError(index, needles, options);
+    const TumDataset dataset(Folder(), options);
+    try {
+      dataset.Read(index);
+    } catch (const FrameError& e) {
+      EXPECT_EQ(FrameFaultName(e.Fault()), std::string(FrameFaultName(fault))) << e.what();
+      EXPECT_EQ(e.Path(), path);
+      return;
+    } catch (const Error& e) {
+      ADD_FAILURE() << "not a FrameError: " << e.what();
+    }
   }
 
   fs::path dir_;
@@ -466,18 +483,40 @@ TEST_F(TumDatasetTest, ListTimestampThatIsNaNIsAnError) {
   ExpectOpenError({PathOf("rgb.txt") + ":3:", "not finite"});
 }
 
-TEST_F(TumDatasetTest, RepeatedListTimestampIsAnError) {
-  MakeSequence(2);
-  WriteText("rgb.txt", "1.0 rgb/a.png\n1.0 rgb/b.png\n");
-  ExpectOpenError({PathOf("rgb.txt") + ":2:", "does not increase", "line 1"});
+TEST_F(TumDatasetTest, RepeatedListTimestampIsDroppedAndDescribed) {
+  MakeSequence(3);
+  WriteText("rgb.txt", Stamp(RgbStamp(0)) + " " + RgbName(0) + "\n" + Stamp(RgbStamp(0)) +
+                           " rgb/again.png\n" + Stamp(RgbStamp(1)) + " " + RgbName(1) + "\n");
+  const TumDataset dataset(Folder());
+  ASSERT_EQ(dataset.Size(), 2u);
+  EXPECT_DOUBLE_EQ(dataset.Timestamp(1), RgbStamp(1));
+  ASSERT_EQ(dataset.DroppedEntries().size(), 1u);
+  const FrameError& dropped = dataset.DroppedEntries()[0];
+  EXPECT_EQ(dropped.Fault(), FrameFault::kTimestampNotIncreasing);
+  EXPECT_EQ(dropped.Path(), PathOf("rgb/again.png"));
+  const std::string message = dropped.what();
+  EXPECT_NE(message.find(PathOf("rgb.txt") + ":2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not increase"), std::string::npos) << message;
+  EXPECT_NE(message.find("line 1"), std::string::npos) << message;
 }
 
-TEST_F(TumDatasetTest, DecreasingListTimestampIsAnError) {
-  MakeSequence(2);
-  WriteText("depth.txt", "# depth\n2.0 depth/a.png\n\n1.5 depth/b.png\n");
-  ExpectOpenError({PathOf("depth.txt") + ":4:", "does not increase", "line 2"});
+TEST_F(TumDatasetTest, DecreasingListTimestampIsDroppedAgainstTheLastKeptEntry) {
+  MakeSequence(3);
+  // 1.5 goes back behind 2.0; 1.8 is still behind the last kept 2.0, so it goes too.
+  WriteText("depth.txt", "# depth\n" + Stamp(DepthStamp(0)) + " " + DepthName(0) + "\n\n" +
+                             Stamp(DepthStamp(0) - 0.5) + " depth/b.png\n" +
+                             Stamp(DepthStamp(0) - 0.2) + " depth/c.png\n" + Stamp(DepthStamp(2)) +
+                             " " + DepthName(2) + "\n");
+  const TumDataset dataset(Folder());
+  ASSERT_EQ(dataset.DroppedEntries().size(), 2u);
+  EXPECT_NE(std::string(dataset.DroppedEntries()[0].what()).find(PathOf("depth.txt") + ":4:"),
+            std::string::npos);
+  EXPECT_NE(std::string(dataset.DroppedEntries()[1].what()).find("line 2"), std::string::npos)
+      << dataset.DroppedEntries()[1].what();
+  // Colour frame 2 pairs with depth 2; frame 0 with depth 0; frame 1 has no depth close enough.
+  ASSERT_EQ(dataset.Size(), 2u);
+  EXPECT_EQ(dataset.Read(1).depth_path, PathOf(DepthName(2)));
 }
-
 TEST_F(TumDatasetTest, EmptyListIsAnError) {
   MakeSequence(2);
   WriteText("rgb.txt", kRgbHeader);
@@ -504,12 +543,27 @@ TEST_F(TumDatasetTest, AssociationTimestampThatIsNotANumberIsAnError) {
   ExpectOpenError({PathOf("associations.txt") + ":2:", "'t' is not a number"});
 }
 
-TEST_F(TumDatasetTest, AssociationTimestampsThatDoNotIncreaseAreAnError) {
+TEST_F(TumDatasetTest, AssociationTimestampsThatDoNotIncreaseAreDropped) {
   MakeSequence(1);
-  WriteText("associations.txt", "2.0 rgb/a.png 2.0 depth/a.png\n1.0 rgb/b.png 1.0 depth/b.png\n");
-  ExpectOpenError({PathOf("associations.txt") + ":2:", "does not increase"});
+  WriteText("associations.txt",
+            "2.0 rgb/a.png 2.0 depth/a.png\n1.0 rgb/b.png 1.0 depth/b.png\n"
+            "2.0 rgb/c.png 2.0 depth/c.png\n3.0 rgb/d.png 3.0 depth/d.png\n");
+  const TumDataset dataset(Folder());
+  ASSERT_EQ(dataset.Size(), 2u);
+  EXPECT_DOUBLE_EQ(dataset.Timestamp(1), 3.0);
+  ASSERT_EQ(dataset.DroppedEntries().size(), 2u);
+  EXPECT_NE(
+      std::string(dataset.DroppedEntries()[0].what()).find(PathOf("associations.txt") + ":2:"),
+      std::string::npos);
+  EXPECT_NE(
+      std::string(dataset.DroppedEntries()[1].what()).find(PathOf("associations.txt") + ":3:"),
+      std::string::npos);
 }
 
+TEST_F(TumDatasetTest, IncreasingListsDropNothing) {
+  MakeSequence(3);
+  EXPECT_TRUE(TumDataset(Folder()).DroppedEntries().empty());
+}
 TEST_F(TumDatasetTest, EmptyAssociationsFileIsAnError) {
   MakeSequence(1);
   WriteText("associations.txt", "# nothing here\n\n");
@@ -533,32 +587,36 @@ TEST_F(TumDatasetTest, GroundTruthWithABadRowIsAnError) {
 TEST_F(TumDatasetTest, MissingColourImageIsAnError) {
   MakeSequence(2);
   fs::remove(PathOf(RgbName(1)));
-  ExpectReadError(1, {PathOf(RgbName(1)), "does not exist"});
+  ExpectFrameError(1, FrameFault::kMissingFile, PathOf(RgbName(1)),
+                   {PathOf(RgbName(1)), "does not exist"});
 }
 
 TEST_F(TumDatasetTest, MissingDepthImageIsAnError) {
   MakeSequence(2);
   fs::remove(PathOf(DepthName(0)));
-  ExpectReadError(0, {PathOf(DepthName(0)), "does not exist"});
+  ExpectFrameError(0, FrameFault::kMissingFile, PathOf(DepthName(0)),
+                   {PathOf(DepthName(0)), "does not exist"});
 }
 
 TEST_F(TumDatasetTest, CorruptColourImageIsAnError) {
   MakeSequence(2);
   WriteText(RgbName(1), "\x89PNG\r\n\x1a\n this is not image data");
-  ExpectReadError(1, {PathOf(RgbName(1)), "cannot decode"});
+  ExpectFrameError(1, FrameFault::kCorruptImage, PathOf(RgbName(1)),
+                   {PathOf(RgbName(1)), "cannot decode"});
 }
 
 TEST_F(TumDatasetTest, TruncatedDepthImageIsAnError) {
   MakeSequence(1);
   const std::string path = PathOf(DepthName(0));
   fs::resize_file(path, fs::file_size(path) / 2);
-  ExpectReadError(0, {path, "cannot decode"});
+  ExpectFrameError(0, FrameFault::kCorruptImage, path, {path, "cannot decode"});
 }
 
 TEST_F(TumDatasetTest, EmptyImageFileIsAnError) {
   MakeSequence(1);
   WriteText(RgbName(0), "");
-  ExpectReadError(0, {PathOf(RgbName(0)), "cannot decode"});
+  ExpectFrameError(0, FrameFault::kEmptyFile, PathOf(RgbName(0)),
+                   {PathOf(RgbName(0)), "empty file"});
 }
 
 TEST_F(TumDatasetTest, ColourImageSizeMustMatchTheFirstFrame) {
@@ -573,24 +631,44 @@ TEST_F(TumDatasetTest, ColourImageSizeMustMatchTheFirstFrame) {
   ExpectError([&] { dataset.Read(2); }, {PathOf(RgbName(2)), "32x24"});
 }
 
+TEST_F(TumDatasetTest, UnreadableFirstFrameFailsTheSizeCheckOfEveryFrame) {
+  // Frame 0 sets the size: when it cannot be read no frame can be checked, and that is not frame
+  // 1's fault (a plain Error naming frame 0's file, not a FrameError a run would skip).
+  MakeSequence(2);
+  WriteText(RgbName(0), "");
+  const TumDataset dataset(Folder());
+  try {
+    dataset.Read(1);
+    ADD_FAILURE() << "no error";
+  } catch (const FrameError& e) {
+    ADD_FAILURE() << "a FrameError: " << e.what();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(PathOf(RgbName(0))), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected_width"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(TumDatasetTest, ColourImageSizeMustMatchTheExpectedSize) {
   MakeSequence(1);
   TumDatasetOptions options;
   options.expected_width = 640;
   options.expected_height = 480;
-  ExpectReadError(0, {PathOf(RgbName(0)), "64x48", "640x480", "expected_width"}, options);
+  ExpectFrameError(0, FrameFault::kWrongSize, PathOf(RgbName(0)),
+                   {PathOf(RgbName(0)), "64x48", "640x480", "expected_width"}, options);
 }
 
 TEST_F(TumDatasetTest, DepthImageSizeMustMatchTheColourImage) {
   MakeSequence(2);
   WriteImage(DepthName(1), MakeRawDepth(1, kWidth, kHeight + 2));
-  ExpectReadError(1, {PathOf(DepthName(1)), "64x50", "64x48"});
+  ExpectFrameError(1, FrameFault::kWrongSize, PathOf(DepthName(1)),
+                   {PathOf(DepthName(1)), "64x50", "64x48"});
 }
 
 TEST_F(TumDatasetTest, SixteenBitColourIsAnError) {
   MakeSequence(1);
   WriteImage(RgbName(0), cv::Mat(kHeight, kWidth, CV_16UC3, cv::Scalar(1000, 2000, 3000)));
-  ExpectReadError(0, {PathOf(RgbName(0)), "16-bit unsigned 3-channel", "8-bit"});
+  ExpectFrameError(0, FrameFault::kWrongType, PathOf(RgbName(0)),
+                   {PathOf(RgbName(0)), "16-bit unsigned 3-channel", "8-bit"});
 }
 
 TEST_F(TumDatasetTest, FloatColourIsAnError) {

@@ -133,5 +133,42 @@ TEST(KeyFrameCullingTest, FramesOfACulledKeyFrameFollowItsParent) {
   EXPECT_LT(RotationAngle(actual_T_wc.Inverse() * expected_T_wc), 1e-9);
 }
 
+TEST(KeyFrameCullingTest, TheTrajectoryDoesNotKeepRemovedKeyFramesOrTheirPoints) {
+  // Issue 16 item 3: history must not hold what the map let go. The recorder keeps a removed
+  // reference keyframe only until it has noted its link to the parent, and a removed keyframe
+  // lets go of its map points.
+  SyntheticScene scene;
+  SyntheticMap map;
+  BuildHover(scene, map, 1.5, 2.5);
+  std::shared_ptr<KeyFrame> culled = map.keyframes[1];
+  const SE3 T_cw = CameraAt(Eigen::Vector3d(0.04, 0.01, 0.0), 0.02);
+  TrajectoryRecorder recorder;
+  recorder.AddTracked(1.0, T_cw, culled);
+  ASSERT_EQ(CullRedundantKeyFrames(map.keyframes.back(), map.map, KeyFrameCullingRules{}), 3);
+  ASSERT_TRUE(culled->IsBad());
+  for (const auto& point : culled->MapPoints()) EXPECT_EQ(point, nullptr);
+  const auto parent = culled->Parent();
+  ASSERT_TRUE(parent && !parent->IsBad());
+  const std::weak_ptr<KeyFrame> watch = culled;
+  map.keyframes.erase(map.keyframes.begin() + 1);
+  culled.reset();
+  ASSERT_FALSE(watch.expired()) << "the recorder holds it until its next fold";
+  // Frames tracked on: the recorder notes the removed keyframe's link and lets it go.
+  for (int i = 0; i < 200; ++i) recorder.AddTracked(2.0 + i, T_cw, parent);
+  EXPECT_TRUE(watch.expired()) << "a removed keyframe outlives the map in the trajectory";
+  // The first frame still follows the parent.
+  EXPECT_LT(
+      (recorder.CameraTrajectory()[0].T_wc.Translation() - T_cw.Inverse().Translation()).norm(),
+      1e-12);
+  Vector6d twist;
+  twist << 0.1, -0.05, 0.02, 0.01, 0.03, -0.02;
+  const SE3 D = SE3::Exp(twist);
+  parent->SetPose(parent->Pose() * D);
+  const SE3 expected_T_wc = (T_cw * D).Inverse();
+  const SE3 actual_T_wc = recorder.CameraTrajectory()[0].T_wc;
+  EXPECT_LT((actual_T_wc.Translation() - expected_T_wc.Translation()).norm(), 1e-9);
+  EXPECT_LT(RotationAngle(actual_T_wc.Inverse() * expected_T_wc), 1e-9);
+}
+
 }  // namespace
 }  // namespace drvslam

@@ -77,6 +77,22 @@ TEST_F(MapConsistencyTest, ABadPointLeftInTheMap) {
   EXPECT_TRUE(CheckMapConsistency(map_.map).empty());
 }
 
+TEST_F(MapConsistencyTest, ABadPointGainsNoObservation) {
+  point_->SetBad();
+  ASSERT_EQ(point_->ObservationCount(), 0);
+  EXPECT_FALSE(point_->AddObservation(keyframe_, static_cast<int>(slot_)));
+  EXPECT_EQ(point_->ObservationCount(), 0);
+  EXPECT_EQ(point_->IndexIn(keyframe_->Id()), -1);
+  // A good point still takes observations.
+  std::shared_ptr<MapPoint> good;
+  for (const auto& point : map_.map.MapPoints()) {
+    if (!point->IsBad()) good = point;
+  }
+  ASSERT_TRUE(good);
+  EXPECT_TRUE(good->AddObservation(keyframe_, 7));
+  EXPECT_EQ(good->IndexIn(keyframe_->Id()), 7);
+}
+
 TEST_F(MapConsistencyTest, APointMissingFromTheMap) {
   map_.map.EraseMapPoint(point_->Id());
   EXPECT_TRUE(Mentions(CheckMapConsistency(map_.map), "is not in the map"));

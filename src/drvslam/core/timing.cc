@@ -8,7 +8,7 @@ namespace drvslam {
 
 void StageTimings::Record(const std::string& stage, double milliseconds) {
   std::lock_guard<std::mutex> lock(mutex_);
-  samples_[stage].push_back(milliseconds);
+  samples_[stage].Add(milliseconds);
 }
 
 std::map<std::string, TimingSummary> StageTimings::Summaries() const {
@@ -31,6 +31,17 @@ TimingSummary Summarize(std::vector<double> samples_ms) {
   summary.p95_ms = rank(0.95);
   summary.mean_ms = std::accumulate(samples_ms.begin(), samples_ms.end(), 0.0) / samples_ms.size();
   summary.max_ms = samples_ms.back();
+  return summary;
+}
+
+TimingSummary Summarize(const BoundedSample& sample) {
+  if (sample.Exact()) return Summarize(sample.Values());
+  TimingSummary summary;
+  summary.count = sample.Count();
+  summary.median_ms = sample.NearestRank(0.5);
+  summary.p95_ms = sample.NearestRank(0.95);
+  summary.mean_ms = sample.Mean();
+  summary.max_ms = sample.Max();
   return summary;
 }
 

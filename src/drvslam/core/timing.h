@@ -1,6 +1,8 @@
 // Per-stage timing: each pipeline stage records its milliseconds per frame; the summary gives
 // the median and 95th percentile that stats.json and the benchmarks report.
-// Thread-safety: guarded by mutex_, so stages on different threads may record.
+// Thread-safety: guarded by mutex_, so stages on different threads may record. Memory per stage
+// is bounded (BoundedSample): exact statistics up to BoundedSample::kExactLimit frames, then
+// quantiles within 0.5 % (count, mean and max stay exact).
 #pragma once
 
 #include <chrono>
@@ -8,6 +10,8 @@
 #include <mutex>
 #include <string>
 #include <vector>
+
+#include "drvslam/core/bounded_sample.h"
 
 namespace drvslam {
 
@@ -27,11 +31,13 @@ class StageTimings {
 
  private:
   mutable std::mutex mutex_;
-  std::map<std::string, std::vector<double>> samples_;
+  std::map<std::string, BoundedSample> samples_;
 };
 
 // Summary of a sample (nearest-rank percentiles; zeros for an empty sample).
 TimingSummary Summarize(std::vector<double> samples_ms);
+// The same for a BoundedSample: Summarize(values) while it is exact, else from its histogram.
+TimingSummary Summarize(const BoundedSample& sample);
 
 // Milliseconds elapsed since construction.
 class Stopwatch {

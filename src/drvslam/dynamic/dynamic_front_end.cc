@@ -9,6 +9,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/dynamic/dynamic_drawing.h"
 #include "drvslam/dynamic/feature_floor.h"
+#include "drvslam/dynamic/pixel_index.h"
 #include "drvslam/dynamic/removal_policy.h"
 #include "drvslam/semantic/mask_propagator.h"
 
@@ -16,10 +17,10 @@ namespace drvslam {
 namespace {
 
 bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
-  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
-  return mask.at<uint8_t>(y, x) != 0;
+  cv::Point pixel;
+  if (!PixelIndex(p, &pixel)) return false;
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= mask.cols || pixel.y >= mask.rows) return false;
+  return mask.at<uint8_t>(pixel) != 0;
 }
 
 void CheckMasks(const std::vector<Instance>& instances, const cv::Size& size,

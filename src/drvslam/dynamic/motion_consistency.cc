@@ -7,16 +7,16 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dynamic/pixel_index.h"
 
 namespace drvslam {
 namespace {
 
 bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  if (mask.empty()) return false;
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
-  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
-  return mask.at<uint8_t>(y, x) != 0;
+  cv::Point pixel;
+  if (mask.empty() || !PixelIndex(p, &pixel)) return false;
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= mask.cols || pixel.y >= mask.rows) return false;
+  return mask.at<uint8_t>(pixel) != 0;
 }
 
 bool NearBorder(const cv::Point2f& p, const cv::Size& size, int margin) {
@@ -265,7 +265,12 @@ void MotionConsistency::TestReprojection(const cv::Mat& prev_depth, const Pinhol
     double low = 0.0, high = 0.0;
     cv::minMaxLoc(prev_depth(window), &low, &high);
     const float z = prev_depth.at<float>(centre);
-    if (!(low > 0.0) || !std::isfinite(high) || high - low > options_.depth_edge * z) continue;
+    // NaN compares false everywhere, so a NaN depth (library callers may pass one) is rejected
+    // explicitly rather than backprojected.
+    if (!(z > 0.0f) || !std::isfinite(z) || !(low > 0.0) || !std::isfinite(high) ||
+        high - low > options_.depth_edge * z) {
+      continue;
+    }
     const Eigen::Vector3d p =
         camera.Backproject(Eigen::Vector2d(prev_pixels[i].x, prev_pixels[i].y), z);
     points[i] = cv::Point3f(static_cast<float>(p.x()), static_cast<float>(p.y()),

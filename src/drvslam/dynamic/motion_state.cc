@@ -6,16 +6,17 @@
 #include <unordered_map>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dynamic/pixel_index.h"
 #include "drvslam/feature/descriptor_distance.h"
 
 namespace drvslam {
 namespace {
 
 bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
-  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
-  return mask.at<uint8_t>(y, x) != 0;
+  cv::Point pixel;
+  if (!PixelIndex(p, &pixel)) return false;
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= mask.cols || pixel.y >= mask.rows) return false;
+  return mask.at<uint8_t>(pixel) != 0;
 }
 
 // Buckets of feature indices on a square grid, for radius queries.
@@ -28,6 +29,11 @@ class PointGrid {
   }
   template <typename Visit>
   void ForEachNear(const cv::Point2f& p, Visit visit) const {
+    // A point off every cell (NaN, beyond long) has no neighbours; Cell would be undefined.
+    if (!std::isfinite(p.x / cell_) || !std::isfinite(p.y / cell_) ||
+        std::abs(p.x / cell_) > kMaxCell || std::abs(p.y / cell_) > kMaxCell) {
+      return;
+    }
     const long cx = Cell(p.x);
     const long cy = Cell(p.y);
     for (long y = cy - 1; y <= cy + 1; ++y) {
@@ -40,9 +46,16 @@ class PointGrid {
   }
 
  private:
+  // Far inside long's range, and inside 32 bits so the key below packs two cells.
+  static constexpr double kMaxCell = 1e9;
   long Cell(float v) const { return static_cast<long>(std::floor(v / cell_)); }
+  // x in the high 32 bits, y in the low ones. Shifted as unsigned: a left shift of a negative
+  // signed value is undefined (before C++20); the bits are those the signed shift gave.
   static long long Key(long x, long y) {
-    return (static_cast<long long>(x) << 32) ^ (y & 0xffffffffLL);
+    const unsigned long long high = static_cast<unsigned long long>(static_cast<long long>(x))
+                                    << 32;
+    const unsigned long long low = static_cast<unsigned long long>(y) & 0xffffffffULL;
+    return static_cast<long long>(high ^ low);
   }
   double cell_;
   std::unordered_map<long long, std::vector<std::size_t>> cells_;
@@ -68,7 +81,8 @@ RingCount CountRingMatches(const cv::Rect& ring, const cv::Mat& mask, const Feat
   std::vector<std::size_t> inside;
   for (std::size_t i = 0; i < cur_kps.size(); ++i) {
     const cv::Point2f& p = cur_kps[i].pt;
-    if (!ring.contains(cv::Point(static_cast<int>(p.x), static_cast<int>(p.y)))) continue;
+    cv::Point pixel;
+    if (!PixelIndex(p, &pixel) || !ring.contains(pixel)) continue;
     if (!mask.empty() && OnMask(mask, p)) continue;
     inside.push_back(i);
   }
@@ -83,7 +97,8 @@ RingCount CountRingMatches(const cv::Rect& ring, const cv::Mat& mask, const Feat
     const float dy = track.cur.y - track.prev.y;
     dx_all.push_back(dx);
     dy_all.push_back(dy);
-    if (ring.contains(cv::Point(static_cast<int>(track.cur.x), static_cast<int>(track.cur.y)))) {
+    cv::Point pixel;
+    if (PixelIndex(track.cur, &pixel) && ring.contains(pixel)) {
       dx_local.push_back(dx);
       dy_local.push_back(dy);
     }

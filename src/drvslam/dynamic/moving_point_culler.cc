@@ -1,6 +1,7 @@
 #include "drvslam/dynamic/moving_point_culler.h"
 
 #include <iterator>
+#include <mutex>
 
 #include "drvslam/dynamic/object_tracker.h"
 #include "drvslam/map/map_point.h"
@@ -36,10 +37,14 @@ void MovingPointCuller::Observe(const Frame& frame, const std::vector<Instance>&
 
 int MovingPointCuller::CullMoving(const std::vector<ObjectEvidence>& objects, Map& map) {
   int culled = 0;
+  // Under the map's update mutex, as tracking and local mapping change points: taken only when
+  // there is something to cull, so a frame without moving objects never waits for it.
+  std::unique_lock<std::mutex> map_lock(map.UpdateMutex(), std::defer_lock);
   for (const ObjectEvidence& object : objects) {
     if (!object.moving) continue;
     const auto filed = by_object_.find(object.track_id);
     if (filed == by_object_.end()) continue;
+    if (!map_lock.owns_lock()) map_lock.lock();
     for (const auto& [id, weak] : filed->second.points) {
       const std::shared_ptr<MapPoint> point = weak.lock();
       if (!point || point->IsBad()) continue;

@@ -26,8 +26,8 @@ class MovingPointCuller {
   void Observe(const Frame& frame, const std::vector<Instance>& instances,
                const std::vector<ObjectEvidence>& objects);
 
-  // Marks bad and erases from `map` every filed point of the objects moving now; returns how
-  // many points were culled.
+  // Marks bad and erases from `map` every filed point of the objects moving now, holding
+  // map.UpdateMutex() (the caller must not); returns how many points were culled.
   int CullMoving(const std::vector<ObjectEvidence>& objects, Map& map);
 
   // Points filed now (some may have turned bad since).

@@ -5,12 +5,15 @@
 #include <tuple>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dynamic/pixel_index.h"
 
 namespace drvslam {
 
 int InstanceAt(const std::vector<Instance>& instances, const cv::Point2f& p) {
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
+  cv::Point pixel;
+  if (!PixelIndex(p, &pixel)) return -1;
+  const int x = pixel.x;
+  const int y = pixel.y;
   for (std::size_t k = 0; k < instances.size(); ++k) {
     const Instance& instance = instances[k];
     if (!instance.box.contains(cv::Point(x, y))) continue;

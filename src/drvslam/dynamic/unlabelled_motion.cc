@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dynamic/pixel_index.h"
 
 namespace drvslam {
 namespace {
@@ -39,8 +40,10 @@ std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tra
   for (std::size_t t = 0; t < tracks.size(); ++t) {
     const FlowTrack& track = tracks[t];
     if (!track.MovingBest()) continue;
-    const int x = static_cast<int>(track.cur.x);
-    const int y = static_cast<int>(track.cur.y);
+    cv::Point pixel;
+    if (!PixelIndex(track.cur, &pixel)) continue;
+    const int x = pixel.x;
+    const int y = pixel.y;
     if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) continue;
     if (!labelled.empty() && labelled.at<uint8_t>(y, x) != 0) continue;
     const float z = depth.at<float>(y, x);

@@ -10,8 +10,8 @@
 namespace drvslam {
 
 RealtimeFeeder::RealtimeFeeder(const TumDataset& dataset, std::size_t count, double rate,
-                               std::size_t preload_bytes)
-    : dataset_(dataset) {
+                               FrameRejections* rejections, std::size_t preload_bytes)
+    : dataset_(dataset), rejections_(rejections) {
   if (!(rate > 0.0)) throw Error("RealtimeFeeder: the playback rate must be positive");
   thread_ = std::thread([this, count, rate, preload_bytes] { Play(count, rate, preload_bytes); });
 }
@@ -28,19 +28,30 @@ bool RealtimeFeeder::Preload(std::size_t count, std::size_t budget) {
   if (count == 0) return false;
   const auto started = std::chrono::steady_clock::now();
   preloaded_.assign(count, std::nullopt);
-  preloaded_[0] = dataset_.Read(0);
-  if (FrameBytes(*preloaded_[0]) * count > budget) {
+  preload_errors_.assign(count, nullptr);
+  // The first frame that loads tells the size of a frame.
+  std::size_t first = 0;
+  std::size_t frame_bytes = 0;
+  for (; first < count && frame_bytes == 0; ++first) {
+    try {
+      preloaded_[first] = dataset_.Read(first);
+      frame_bytes = FrameBytes(*preloaded_[first]);
+    } catch (...) {
+      preload_errors_[first] = std::current_exception();
+    }
+  }
+  if (frame_bytes * count > budget) {
     preloaded_.clear();
+    preload_errors_.clear();
     return false;
   }
   // Decoding is independent per frame: every core takes a share (nothing else runs yet). A frame
   // that fails keeps its error, raised when its turn comes, after the frames before it.
-  preload_errors_.assign(count, nullptr);
   const std::size_t workers = std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> threads;
   for (std::size_t w = 0; w < workers; ++w) {
     threads.emplace_back([&, w] {
-      for (std::size_t i = 1 + w; i < count; i += workers) {
+      for (std::size_t i = first + w; i < count; i += workers) {
         try {
           preloaded_[i] = dataset_.Read(i);
         } catch (...) {
@@ -114,6 +125,23 @@ void RealtimeFeeder::Play(std::size_t count, double rate, std::size_t preload_by
     try {
       // Loaded before its arrival time, as a sensor has the image ready when it delivers it.
       frame = Load(i);
+      if (rejections_) rejections_->Accept();
+    } catch (const FrameError& error) {
+      if (!rejections_) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        break;
+      }
+      try {
+        rejections_->Reject(i, error);
+      } catch (...) {
+        // Too many bad frames in a row: the delivery ends with that Error.
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        break;
+      }
+      ++i;
+      continue;
     } catch (...) {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = std::current_exception();

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "drvslam/core/latest_frame_slot.h"
+#include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/tum_dataset.h"
 
 namespace drvslam {
@@ -31,8 +32,12 @@ class RealtimeFeeder {
  public:
   // Starts delivering frames [0, count) of `dataset` (which must outlive this object); frame i
   // arrives (timestamp(i) - timestamp(0)) / rate seconds after construction. rate > 0: 2 plays a
-  // 30 Hz sequence at 60 Hz. The frames are decoded ahead when they fit in `preload_bytes`.
+  // 30 Hz sequence at 60 Hz. With `rejections` (which must outlive this object), a frame that
+  // fails to load with a FrameError is filed there and skipped, as a camera drops a bad frame;
+  // without, it ends the delivery like any other error. The frames are decoded ahead when they
+  // fit in `preload_bytes`.
   RealtimeFeeder(const TumDataset& dataset, std::size_t count, double rate = 1.0,
+                 FrameRejections* rejections = nullptr,
                  std::size_t preload_bytes = kDefaultPreloadBytes);
   static constexpr std::size_t kDefaultPreloadBytes = std::size_t{3} << 30;
   // Stop.
@@ -68,6 +73,7 @@ class RealtimeFeeder {
   RgbdFrame Load(std::size_t i);
 
   const TumDataset& dataset_;
+  FrameRejections* const rejections_;
   LatestFrameSlot<RgbdFrame> slot_;
   mutable std::mutex mutex_;  // guards stopping_, error_, max_lag_ms_ and skipped_loading_
   std::condition_variable stop_requested_;

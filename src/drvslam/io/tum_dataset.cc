@@ -14,6 +14,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/io/association.h"
 #include "drvslam/io/depth_image.h"
+#include "drvslam/io/frame_fault.h"
 #include "drvslam/io/text_lines.h"
 
 namespace drvslam {
@@ -65,12 +66,17 @@ double ParseStamp(const std::string& field, const std::string& where) {
   return stamp;
 }
 
-void RequireIncreasing(double stamp, const std::string& field, double previous, int previous_line,
-                       const std::string& where) {
-  if (stamp <= previous) {
-    throw Error(where + ": timestamp " + field + " does not increase (previous " +
-                FormatValue(previous) + " on line " + std::to_string(previous_line) + ")");
-  }
+// A repeated or backward stamp: the entry is dropped (a recorder glitch must not end the run) and
+// described for TumDataset::DroppedEntries. False when the stamp increases.
+bool DropIfNotIncreasing(double stamp, const std::string& field, double previous, int previous_line,
+                         const std::string& where, const std::string& path,
+                         std::vector<FrameError>* dropped) {
+  if (stamp > previous) return false;
+  dropped->emplace_back(FrameFault::kTimestampNotIncreasing, path,
+                        where + ": timestamp " + field + " does not increase (previous " +
+                            FormatValue(previous) + " on line " + std::to_string(previous_line) +
+                            "); entry skipped");
+  return true;
 }
 
 void RequireFile(const std::string& path, const std::string& what) {
@@ -78,8 +84,10 @@ void RequireFile(const std::string& path, const std::string& what) {
   if (IsFolder(path)) throw Error(path + ": " + what + " is a folder, not a file");
 }
 
-// rgb.txt / depth.txt: "timestamp path" per line, strictly increasing stamps.
-std::vector<StampedPath> ReadStampList(const std::string& path, const std::string& folder) {
+// rgb.txt / depth.txt: "timestamp path" per line; entries whose stamp does not increase over
+// the last kept one are dropped into `dropped`.
+std::vector<StampedPath> ReadStampList(const std::string& path, const std::string& folder,
+                                       std::vector<FrameError>* dropped) {
   RequireFile(path, "image list");
   std::vector<StampedPath> list;
   int previous_line = 0;
@@ -90,19 +98,35 @@ std::vector<StampedPath> ReadStampList(const std::string& path, const std::strin
                   std::to_string(fields.size()));
     }
     const double stamp = ParseStamp(fields[0], where);
-    if (!list.empty()) RequireIncreasing(stamp, fields[0], list.back().stamp, previous_line, where);
-    list.push_back({stamp, JoinPath(folder, fields[1])});
+    const std::string image = JoinPath(folder, fields[1]);
+    if (!list.empty() && DropIfNotIncreasing(stamp, fields[0], list.back().stamp, previous_line,
+                                             where, image, dropped)) {
+      return;
+    }
+    list.push_back({stamp, image});
     previous_line = line_number;
   });
   if (list.empty()) throw Error(path + ": lists no images");
   return list;
 }
 
+// One frame's image file: every fault is a FrameError, so a run can skip the frame.
 cv::Mat LoadImage(const std::string& path, const std::string& what) {
-  RequireFile(path, what);
+  if (!PathExists(path)) {
+    throw FrameError(FrameFault::kMissingFile, path, path + ": " + what + " does not exist");
+  }
+  if (IsFolder(path)) {
+    throw FrameError(FrameFault::kMissingFile, path,
+                     path + ": " + what + " is a folder, not a file");
+  }
+  std::error_code error;
+  if (fs::file_size(path, error) == 0 && !error) {
+    throw FrameError(FrameFault::kEmptyFile, path, path + ": " + what + " is an empty file");
+  }
   cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (image.empty()) {
-    throw Error(path + ": cannot decode " + what + " (corrupt or unsupported format)");
+    throw FrameError(FrameFault::kCorruptImage, path,
+                     path + ": cannot decode " + what + " (corrupt or unsupported format)");
   }
   return image;
 }
@@ -110,8 +134,9 @@ cv::Mat LoadImage(const std::string& path, const std::string& what) {
 cv::Mat LoadColour(const std::string& path, bool rgb_order) {
   const cv::Mat raw = LoadImage(path, "colour image");
   if (raw.depth() != CV_8U) {
-    throw Error(path + ": colour image is " + DescribeImageType(raw) +
-                "; expected 8-bit with 1, 3 or 4 channels");
+    throw FrameError(FrameFault::kWrongType, path,
+                     path + ": colour image is " + DescribeImageType(raw) +
+                         "; expected 8-bit with 1, 3 or 4 channels");
   }
   cv::Mat bgr;
   switch (raw.channels()) {
@@ -129,14 +154,21 @@ cv::Mat LoadColour(const std::string& path, bool rgb_order) {
       cv::cvtColor(raw, bgr, rgb_order ? cv::COLOR_RGBA2BGR : cv::COLOR_BGRA2BGR);
       break;
     default:
-      throw Error(path + ": colour image is " + DescribeImageType(raw) +
-                  "; expected 8-bit with 1, 3 or 4 channels");
+      throw FrameError(FrameFault::kWrongType, path,
+                       path + ": colour image is " + DescribeImageType(raw) +
+                           "; expected 8-bit with 1, 3 or 4 channels");
   }
   return bgr;
 }
 
 cv::Mat LoadDepth(const std::string& path, double depth_map_factor) {
-  return DepthToMetres(LoadImage(path, "depth image"), depth_map_factor, path + ": depth image");
+  const cv::Mat raw = LoadImage(path, "depth image");
+  if (!IsDepthImageType(raw.type())) {
+    throw FrameError(FrameFault::kWrongType, path,
+                     path + ": depth image is " + DescribeImageType(raw) +
+                         "; expected 16-bit unsigned 1-channel (or 32-bit float 1-channel metres)");
+  }
+  return DepthToMetres(raw, depth_map_factor, path + ": depth image");
 }
 
 }  // namespace
@@ -184,11 +216,12 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
       }
       const double rgb_stamp = ParseStamp(fields[0], where);
       const double depth_stamp = ParseStamp(fields[2], where);
-      if (!entries_.empty()) {
-        RequireIncreasing(rgb_stamp, fields[0], entries_.back().rgb_stamp, previous_line, where);
+      const std::string rgb_path = JoinPath(folder_, fields[1]);
+      if (!entries_.empty() && DropIfNotIncreasing(rgb_stamp, fields[0], entries_.back().rgb_stamp,
+                                                   previous_line, where, rgb_path, &dropped_)) {
+        return;
       }
-      entries_.push_back(
-          {rgb_stamp, depth_stamp, JoinPath(folder_, fields[1]), JoinPath(folder_, fields[3])});
+      entries_.push_back({rgb_stamp, depth_stamp, rgb_path, JoinPath(folder_, fields[3])});
       previous_line = line_number;
     });
     if (entries_.empty()) throw Error(associations + ": lists no frames");
@@ -201,8 +234,8 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
                   ": file does not exist (a TUM sequence needs rgb.txt and depth.txt, or "
                   "associations.txt)");
     }
-    const std::vector<StampedPath> rgb = ReadStampList(rgb_list_path, folder_);
-    const std::vector<StampedPath> depth = ReadStampList(depth_list_path, folder_);
+    const std::vector<StampedPath> rgb = ReadStampList(rgb_list_path, folder_, &dropped_);
+    const std::vector<StampedPath> depth = ReadStampList(depth_list_path, folder_, &dropped_);
     std::vector<double> rgb_stamps, depth_stamps;
     for (const StampedPath& item : rgb) rgb_stamps.push_back(item.stamp);
     for (const StampedPath& item : depth) depth_stamps.push_back(item.stamp);
@@ -243,9 +276,19 @@ cv::Size TumDataset::ReferenceSize(std::size_t index, const cv::Mat& bgr) const 
   if (!size_cache_->frame0_size) {
     // Frame 0 defines the size whatever order frames are read in, so the outcome of Read(i) never
     // depends on which frames were read before it.
-    size_cache_->frame0_size =
-        index == 0 ? bgr.size()
-                   : LoadColour(entries_[0].rgb_path, options_.rgb_is_rgb_order).size();
+    if (index == 0) {
+      size_cache_->frame0_size = bgr.size();
+    } else {
+      try {
+        size_cache_->frame0_size =
+            LoadColour(entries_[0].rgb_path, options_.rgb_is_rgb_order).size();
+      } catch (const FrameError& error) {
+        // Not frame `index`'s fault: no frame can be checked, so the whole dataset fails.
+        throw Error(std::string(error.what()) +
+                    " (the first frame sets the size of every frame; give "
+                    "TumDatasetOptions.expected_width/expected_height instead)");
+      }
+    }
   }
   return *size_cache_->frame0_size;
 }
@@ -272,12 +315,14 @@ RgbdFrame TumDataset::Read(std::size_t index) const {
     source = "the first frame's colour image " + entries_[0].rgb_path;
   }
   if (frame.bgr.size() != expected) {
-    throw Error(entry.rgb_path + ": colour image is " + FormatSize(frame.bgr.size()) + " but " +
-                source + " is " + FormatSize(expected));
+    throw FrameError(FrameFault::kWrongSize, entry.rgb_path,
+                     entry.rgb_path + ": colour image is " + FormatSize(frame.bgr.size()) +
+                         " but " + source + " is " + FormatSize(expected));
   }
   if (frame.depth.size() != expected) {
-    throw Error(entry.depth_path + ": depth image is " + FormatSize(frame.depth.size()) + " but " +
-                source + " is " + FormatSize(expected));
+    throw FrameError(FrameFault::kWrongSize, entry.depth_path,
+                     entry.depth_path + ": depth image is " + FormatSize(frame.depth.size()) +
+                         " but " + source + " is " + FormatSize(expected));
   }
   return frame;
 }
@@ -287,5 +332,7 @@ bool TumDataset::HasGroundTruth() const { return !ground_truth_.empty(); }
 const Trajectory& TumDataset::GroundTruth() const { return ground_truth_; }
 
 const std::string& TumDataset::Folder() const { return folder_; }
+
+const std::vector<FrameError>& TumDataset::DroppedEntries() const { return dropped_; }
 
 }  // namespace drvslam

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "drvslam/io/frame_fault.h"
 #include "drvslam/io/trajectory_io.h"
 
 namespace drvslam {
@@ -39,21 +40,27 @@ class TumDataset {
   // colour with depth as the TUM associate.py does (AssociateStamps, offset 0), or takes the pairs
   // from associations.txt when present ("t_rgb rgb_path t_depth depth_path" per line). Reads
   // groundtruth.txt when present. Images are not loaded here. Throws Error naming the file (and
-  // line) on a missing folder or list, a malformed line, timestamps that do not increase, or an
-  // empty sequence.
+  // line) on a missing folder or list, a malformed line, or an empty sequence. A list entry
+  // whose timestamp repeats or goes back (against the last kept entry) is dropped and described
+  // in DroppedEntries().
   explicit TumDataset(const std::string& folder, const TumDatasetOptions& options = {});
 
   std::size_t Size() const;
   double Timestamp(std::size_t index) const;
   // Loads and checks both images of frame `index`. Every call reads the files again and keeps no
   // per-frame state, so it may be called in any order and from several threads. When the options
-  // give no expected size, every frame must match the colour image of frame 0. Throws Error
-  // naming the file for a missing, corrupt, wrongly sized or wrongly typed image.
+  // give no expected size, every frame must match the colour image of frame 0. Throws FrameError
+  // (an Error naming the file, with the FrameFault) for a missing, empty, corrupt, wrongly sized
+  // or wrongly typed image; a plain Error when frame 0, which sets the size, cannot be read.
+  // NaN, infinite and negative float depths are stored as 0 (no measurement).
   RgbdFrame Read(std::size_t index) const;
 
   bool HasGroundTruth() const;
   const Trajectory& GroundTruth() const;  // empty when absent
   const std::string& Folder() const;
+  // List entries dropped on opening because their timestamp did not increase (kind
+  // kTimestampNotIncreasing; the message names the list file and line).
+  const std::vector<FrameError>& DroppedEntries() const;
 
  private:
   struct Entry {
@@ -71,6 +78,7 @@ class TumDataset {
   TumDatasetOptions options_;
   std::vector<Entry> entries_;
   Trajectory ground_truth_;
+  std::vector<FrameError> dropped_;
   // The size of frame 0, found on first need; shared so the dataset stays copyable and movable.
   std::shared_ptr<SizeCache> size_cache_;
 };

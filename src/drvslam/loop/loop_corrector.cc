@@ -98,8 +98,8 @@ LoopCorrectionStats CorrectLoop(const LoopMatch& match, Map& map, const OrbMatch
       existing->Replace(loop_point);
       replaced.push_back(existing);
     } else if (loop_point->IndexIn(current->Id()) < 0) {
+      if (!loop_point->AddObservation(current, static_cast<int>(i))) continue;  // culled meanwhile
       current->AddMapPoint(loop_point, i);
-      loop_point->AddObservation(current, static_cast<int>(i));
       loop_point->ComputeDistinctiveDescriptor();
     } else {
       continue;

@@ -278,6 +278,12 @@ void KeyFrame::SetBad() {
     std::lock_guard<std::mutex> lock(pose_mutex_);
     T_cp_ = T_cp;
   }
+  {
+    // Its points are no longer its to keep alive (they may be culled while the keyframe itself
+    // is still referenced, e.g. as a removed reference keyframe's parent link).
+    std::lock_guard<std::mutex> lock(features_mutex_);
+    std::fill(map_points_.begin(), map_points_.end(), nullptr);
+  }
   std::lock_guard<std::mutex> lock(connections_mutex_);
   connections_.clear();
   ordered_connections_.clear();

@@ -54,9 +54,11 @@ int MapPoint::ObservationCount() const {
   return static_cast<int>(observations_.size());
 }
 
-void MapPoint::AddObservation(const std::shared_ptr<KeyFrame>& keyframe, int index) {
+bool MapPoint::AddObservation(const std::shared_ptr<KeyFrame>& keyframe, int index) {
   std::lock_guard<std::mutex> lock(features_mutex_);
+  if (bad_) return false;
   observations_[keyframe->Id()] = Observation{keyframe, index};
+  return true;
 }
 
 void MapPoint::EraseObservation(long keyframe_id) {

@@ -40,7 +40,9 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   // Observations keyed by keyframe id (so iteration order is deterministic).
   std::map<long, Observation> Observations() const;
   int ObservationCount() const;
-  void AddObservation(const std::shared_ptr<KeyFrame>& keyframe, int index);
+  // Ignored (returns false) once the point is bad: a culled or replaced point must not gain
+  // observations again (it would keep keyframes and slots pointing at a dead point).
+  bool AddObservation(const std::shared_ptr<KeyFrame>& keyframe, int index);
   // Removes the keyframe's observation; the point turns bad when fewer than two remain.
   void EraseObservation(long keyframe_id);
   int IndexIn(long keyframe_id) const;  // -1 when not observed there

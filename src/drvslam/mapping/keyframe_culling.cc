@@ -40,10 +40,12 @@ int CullRedundantKeyFrames(const std::shared_ptr<KeyFrame>& keyframe, Map& map,
   for (const auto& candidate : keyframe->CovisiblesByWeight()) {
     if (candidate->IsBad() || candidate->Id() == origin_id || candidate == keyframe) continue;
     if (!IsRedundantKeyFrame(*candidate, rules)) continue;
+    // Taken first: SetBad empties the keyframe's slots.
+    const std::vector<std::shared_ptr<MapPoint>> points = candidate->MapPoints();
     candidate->SetBad();
     if (!candidate->IsBad()) continue;  // SetBad refuses keyframe 0
     map.EraseKeyFrame(candidate->Id());
-    for (const auto& point : candidate->MapPoints()) {
+    for (const auto& point : points) {
       if (point && point->IsBad()) map.EraseMapPoint(point->Id());
     }
     ++culled;

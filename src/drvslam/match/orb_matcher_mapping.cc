@@ -200,7 +200,8 @@ int OrbMatcher::Fuse(const std::shared_ptr<KeyFrame>& keyframe,
         if (replaced) replaced->push_back(existing);
       }
     } else {
-      point->AddObservation(keyframe, best_index);
+      // A point culled meanwhile (bad) takes no observation and stays out of the keyframe.
+      if (!point->AddObservation(keyframe, best_index)) continue;
       keyframe->AddMapPoint(point, best_index);
     }
     ++fused;

@@ -112,7 +112,7 @@ void AsyncSegmenter::Run(const Job& job) {
     slot.state = State::kDone;
     slot.result = frame;
     ++stats_.segmented;
-    segment_ms_.push_back(frame->segment_ms);
+    segment_ms_.Add(frame->segment_ms);
     if (!latest_ || latest_->segmentation.frame_index < job.frame_index) latest_ = frame;
   }
   TrimLocked();

@@ -107,7 +107,7 @@ class AsyncSegmenter {
   std::map<std::size_t, Slot> slots_;
   std::shared_ptr<const SegmentedFrame> latest_;
   AsyncSegmenterStats stats_;
-  std::vector<double> segment_ms_;
+  BoundedSample segment_ms_;  // bounded memory over long runs
   bool stopping_ = false;
   bool has_submitted_ = false;
   std::size_t last_index_ = 0;

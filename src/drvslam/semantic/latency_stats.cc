@@ -24,19 +24,29 @@ Spread SpreadOf(std::vector<double> values) {
   return spread;
 }
 
+Spread SpreadOf(const BoundedSample& sample) {
+  if (sample.Exact()) return SpreadOf(sample.Values());
+  Spread spread;
+  spread.median = sample.NearestRank(0.5);
+  spread.p95 = sample.NearestRank(0.95);
+  spread.max = sample.Max();
+  spread.mean = sample.Mean();
+  return spread;
+}
+
 void LatencyRecorder::AddFresh() {
   ++counts_.frames;
   ++counts_.fresh;
-  lag_frames_.push_back(0.0);
-  lag_ms_.push_back(0.0);
+  lag_frames_.Add(0.0);
+  lag_ms_.Add(0.0);
 }
 
 void LatencyRecorder::AddPropagated(std::size_t lag_frames, double lag_ms, double propagation_ms) {
   ++counts_.frames;
   ++counts_.propagated;
-  lag_frames_.push_back(static_cast<double>(lag_frames));
-  lag_ms_.push_back(lag_ms);
-  propagation_ms_.push_back(propagation_ms);
+  lag_frames_.Add(static_cast<double>(lag_frames));
+  lag_ms_.Add(lag_ms);
+  propagation_ms_.Add(propagation_ms);
 }
 
 void LatencyRecorder::AddWithoutMasks() {

@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "drvslam/core/bounded_sample.h"
+
 namespace drvslam {
 
 // Median, 95th percentile and maximum of a sample (all 0 when it is empty).
@@ -17,6 +19,9 @@ struct Spread {
   double mean = 0.0;
 };
 Spread SpreadOf(std::vector<double> values);
+// The same for a BoundedSample: SpreadOf(values) while it is exact; past that the median and p95
+// are its nearest-rank quantiles (within 0.5 %, no interpolation), mean and max exact.
+Spread SpreadOf(const BoundedSample& sample);
 
 struct SegmentationLatencyStats {
   std::size_t frames = 0;         // frames that asked for masks
@@ -38,9 +43,10 @@ class LatencyRecorder {
 
  private:
   SegmentationLatencyStats counts_;
-  std::vector<double> lag_frames_;
-  std::vector<double> lag_ms_;
-  std::vector<double> propagation_ms_;
+  // Bounded memory over hours of frames (BoundedSample).
+  BoundedSample lag_frames_;
+  BoundedSample lag_ms_;
+  BoundedSample propagation_ms_;
 };
 
 }  // namespace drvslam

@@ -35,6 +35,13 @@ class Random {
   explicit Random(uint32_t seed) : engine_(seed) {}
 
   uint32_t Bits() { return static_cast<uint32_t>(engine_()); }
+  // 64 bits from two draws, the first in the high half. Drawn in two statements: the operands of
+  // one expression (a() << 32 | a()) are evaluated in an order the compiler chooses.
+  uint64_t Bits64() {
+    const uint64_t high = Bits();
+    const uint64_t low = Bits();
+    return (high << 32) | low;
+  }
   // Uniform in [0, 1) with 53 random bits.
   double Uniform() {
     const uint64_t high = Bits() >> 5;

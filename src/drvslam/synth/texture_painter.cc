@@ -90,7 +90,7 @@ struct Painter {
     cv::Mat grid(grid_h, grid_w, octave.colour ? CV_32FC3 : CV_32FC1);
     // OpenCV's generator (a fixed multiply-with-carry) seeded from ours fills large grids fast
     // and just as reproducibly.
-    cv::RNG fill_rng((static_cast<uint64_t>(rng.Bits()) << 32) | rng.Bits());
+    cv::RNG fill_rng(rng.Bits64());
     fill_rng.fill(grid, cv::RNG::UNIFORM, -octave.amplitude, octave.amplitude);
     if (cell <= 1.0) return grid(cv::Rect(0, 0, size.width, size.height));
     cv::Mat up;
@@ -121,7 +121,7 @@ struct Painter {
 
   // Texel-scale luminance grain over the finished image, so that no area is perfectly flat.
   void AddGrain(cv::Mat* image, double amplitude) {
-    const uint64_t key = (static_cast<uint64_t>(rng.Bits()) << 32) | rng.Bits();
+    const uint64_t key = rng.Bits64();
     const float scale = static_cast<float>(2.0 * amplitude);
     for (int y = 0; y < image->rows; ++y) {
       uint8_t* row = image->ptr<uint8_t>(y);
@@ -441,7 +441,7 @@ struct Painter {
     const int gw = static_cast<int>(std::ceil(size.width / cell_x)) + 2;
     const int gh = static_cast<int>(std::ceil(size.height / cell_y)) + 2;
     cv::Mat grid(gh, gw, CV_32FC1);
-    cv::RNG fill_rng((static_cast<uint64_t>(rng.Bits()) << 32) | rng.Bits());
+    cv::RNG fill_rng(rng.Bits64());
     fill_rng.fill(grid, cv::RNG::UNIFORM, -amplitude, amplitude);
     cv::Mat up;
     cv::resize(grid, up, cv::Size(static_cast<int>(gw * cell_x), static_cast<int>(gh * cell_y)), 0,

@@ -5,12 +5,53 @@ namespace drvslam {
 void TrajectoryRecorder::AddTracked(double timestamp, const SE3& T_cw,
                                     const std::shared_ptr<KeyFrame>& reference) {
   std::lock_guard<std::mutex> lock(mutex_);
-  entries_.push_back({timestamp, true, T_cw * reference->InversePose(), reference});
+  entries_.push_back({timestamp, true, T_cw * reference->InversePose(), reference->Id()});
+  references_.emplace(reference->Id(), reference);
+  if (entries_.size() % kFoldEvery == 0) FoldRemovedReferences();
 }
 
 void TrajectoryRecorder::AddLost(double timestamp) {
   std::lock_guard<std::mutex> lock(mutex_);
-  entries_.push_back({timestamp, false, SE3(), nullptr});
+  entries_.push_back({timestamp, false, SE3(), -1});
+}
+
+void TrajectoryRecorder::FoldRemovedReferences() {
+  // Parents folded in may be removed themselves: repeat until every held keyframe is live (or
+  // has no parent to hand over to, as the origin).
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (auto it = references_.begin(); it != references_.end();) {
+      const std::shared_ptr<KeyFrame>& keyframe = it->second;
+      const std::shared_ptr<KeyFrame> parent = keyframe->IsBad() ? keyframe->Parent() : nullptr;
+      if (!parent) {
+        ++it;
+        continue;
+      }
+      removed_[it->first] = Link{parent->Id(), keyframe->PoseRelativeToParent()};
+      changed = references_.emplace(parent->Id(), parent).second || changed;
+      it = references_.erase(it);
+    }
+  }
+}
+
+SE3 TrajectoryRecorder::Resolve(SE3 T_cr, long reference_id) const {
+  // Walk up past removed keyframes, composing the poses they had relative to their parents when
+  // they were removed: the frame then follows the parent's corrections.
+  auto held = references_.find(reference_id);
+  while (held == references_.end()) {
+    const Link& link = removed_.at(reference_id);
+    T_cr = T_cr * link.T_cp;
+    reference_id = link.parent_id;
+    held = references_.find(reference_id);
+  }
+  std::shared_ptr<KeyFrame> reference = held->second;
+  // Removed since the last fold: the same walk through the keyframes themselves.
+  while (reference->IsBad() && reference->Parent()) {
+    T_cr = T_cr * reference->PoseRelativeToParent();
+    reference = reference->Parent();
+  }
+  return T_cr * reference->Pose();
 }
 
 std::size_t TrajectoryRecorder::FrameCount() const {
@@ -41,15 +82,7 @@ drvslam::Trajectory TrajectoryRecorder::CameraTrajectory() const {
   drvslam::Trajectory trajectory;
   for (const Entry& entry : entries_) {
     if (!entry.tracked) continue;
-    // Walk up the spanning tree past removed keyframes, composing the poses they had relative
-    // to their parents when they were removed: the frame then follows the parent's corrections.
-    std::shared_ptr<KeyFrame> reference = entry.reference;
-    SE3 T_cr = entry.T_cr;
-    while (reference->IsBad() && reference->Parent()) {
-      T_cr = T_cr * reference->PoseRelativeToParent();
-      reference = reference->Parent();
-    }
-    const SE3 T_cw = T_cr * reference->Pose();
+    const SE3 T_cw = Resolve(entry.T_cr, entry.reference_id);
     trajectory.push_back({entry.timestamp, T_cw.Inverse()});
   }
   return trajectory;

@@ -1,8 +1,12 @@
 // TrajectoryRecorder: every frame's pose stored relative to its reference keyframe, so that the
 // trajectory written at the end reflects later corrections of the keyframes (BA, loop closing).
+// Frames name their reference by id; the recorder holds each reference keyframe once, and a
+// removed (bad) one only until its link to its parent (parent id, relative pose) is noted, so
+// history costs a few numbers per frame and removed keyframes are freed.
 // Thread-safety: guarded by mutex_ (tracking appends, the saver reads).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -31,11 +35,27 @@ class TrajectoryRecorder {
   struct Entry {
     double timestamp;
     bool tracked;
-    SE3 T_cr;  // frame relative to its reference keyframe
-    std::shared_ptr<KeyFrame> reference;
+    SE3 T_cr;           // frame relative to its reference keyframe
+    long reference_id;  // -1 when not tracked
   };
+  // A removed keyframe: its parent and its pose relative to it when it was removed.
+  struct Link {
+    long parent_id;
+    SE3 T_cp;
+  };
+  // Notes the links of removed reference keyframes and lets them go (caller holds mutex_).
+  void FoldRemovedReferences();
+  // The current world-to-camera pose of a frame at T_cr from keyframe `reference_id`, through
+  // the links of removed keyframes (caller holds mutex_).
+  SE3 Resolve(SE3 T_cr, long reference_id) const;
+
+  // Folding runs once per this many frames: its cost stays small and the memory bounded.
+  static constexpr std::size_t kFoldEvery = 64;
+
   mutable std::mutex mutex_;
   std::vector<Entry> entries_;
+  std::map<long, std::shared_ptr<KeyFrame>> references_;  // live (or not yet folded) ones
+  std::map<long, Link> removed_;
 };
 
 // Camera-to-world poses of the map's keyframes (not removed), in id order.
