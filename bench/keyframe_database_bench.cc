@@ -16,13 +16,13 @@
 #include "drvslam/loop/default_vocabulary.h"
 #include "drvslam/loop/keyframe_database.h"
 #include "drvslam/loop/relocalizer.h"
-#include "drvslam/loop/training_images.h"
 #include "drvslam/loop/vocabulary_io.h"
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/orb_matcher.h"
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
+#include "drvslam/tools/vocab/training_images.h"
 
 namespace drvslam {
 namespace {

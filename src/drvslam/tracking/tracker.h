@@ -10,12 +10,12 @@
 
 #include "drvslam/map/frame.h"
 #include "drvslam/map/map.h"
+#include "drvslam/map/mapping_status.h"
+#include "drvslam/map/place_recognition.h"
 #include "drvslam/match/orb_matcher.h"
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/local_map.h"
-#include "drvslam/tracking/mapping_status.h"
-#include "drvslam/tracking/place_recognition.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "drvslam/tracking/trajectory_recorder.h"
 
