@@ -7,17 +7,10 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "drvslam/core/error.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 namespace {
-
-bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  if (mask.empty()) return false;
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
-  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
-  return mask.at<uint8_t>(y, x) != 0;
-}
 
 bool NearBorder(const cv::Point2f& p, const cv::Size& size, int margin) {
   return p.x < margin || p.y < margin || p.x >= size.width - margin || p.y >= size.height - margin;

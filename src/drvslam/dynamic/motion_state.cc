@@ -7,16 +7,10 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/feature/descriptor_distance.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 namespace {
-
-bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
-  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
-  return mask.at<uint8_t>(y, x) != 0;
-}
 
 // Buckets of feature indices on a square grid, for radius queries.
 class PointGrid {
@@ -69,7 +63,7 @@ RingCount CountRingMatches(const cv::Rect& ring, const cv::Mat& mask, const Feat
   for (std::size_t i = 0; i < cur_kps.size(); ++i) {
     const cv::Point2f& p = cur_kps[i].pt;
     if (!ring.contains(cv::Point(static_cast<int>(p.x), static_cast<int>(p.y)))) continue;
-    if (!mask.empty() && OnMask(mask, p)) continue;
+    if (OnMask(mask, p)) continue;
     inside.push_back(i);
   }
   count.features = static_cast<int>(inside.size());

@@ -5,18 +5,15 @@
 #include <tuple>
 
 #include "drvslam/core/error.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 
 int InstanceAt(const std::vector<Instance>& instances, const cv::Point2f& p) {
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
+  const cv::Point pixel(static_cast<int>(p.x), static_cast<int>(p.y));
   for (std::size_t k = 0; k < instances.size(); ++k) {
     const Instance& instance = instances[k];
-    if (!instance.box.contains(cv::Point(x, y))) continue;
-    const cv::Mat& mask = instance.mask;
-    if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) continue;
-    if (mask.at<uint8_t>(y, x) != 0) return static_cast<int>(k);
+    if (instance.box.contains(pixel) && OnMask(instance.mask, p)) return static_cast<int>(k);
   }
   return -1;
 }
