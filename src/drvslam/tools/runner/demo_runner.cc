@@ -32,29 +32,22 @@ struct SegmenterChoice {
   std::string label;
 };
 
-SegmenterChoice OracleMasks() {
-  SegmenterChoice oracle;
-  oracle.choice.segmenter = "gt";
-  oracle.choice.dynamic = "on";
-  oracle.label = kOracleSegmenter;
-  return oracle;
+SegmenterChoice Choose(const std::string& segmenter, const std::string& dynamic,
+                       const std::string& label, const std::string& model = "") {
+  SegmenterChoice chosen;
+  chosen.choice.segmenter = segmenter;
+  chosen.choice.model = model;
+  chosen.choice.dynamic = dynamic;
+  chosen.label = label;
+  return chosen;
 }
 
-SegmenterChoice DynamicOff() {
-  SegmenterChoice off;
-  off.choice.segmenter = "none";
-  off.choice.dynamic = "off";
-  off.label = kNoSegmenter;
-  return off;
-}
+SegmenterChoice OracleMasks() { return Choose("gt", "on", kOracleSegmenter); }
+
+SegmenterChoice DynamicOff() { return Choose("none", "off", kNoSegmenter); }
 
 SegmenterChoice Network(const std::string& model) {
-  SegmenterChoice network;
-  network.choice.segmenter = "yolo";
-  network.choice.model = model;
-  network.choice.dynamic = "on";
-  network.label = "yolo (" + fs::path(model).filename().string() + ")";
-  return network;
+  return Choose("yolo", "on", "yolo (" + fs::path(model).filename().string() + ")", model);
 }
 
 // Runs SLAM on a synthesized sequence into `folder` and evaluates it.

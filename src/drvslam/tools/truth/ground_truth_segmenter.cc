@@ -85,16 +85,9 @@ bool GroundTruthSegmenter::IsMoving(int instance_id, double timestamp) const {
 
 Segmentation GroundTruthSegmenter::Segment(const cv::Mat& bgr, double timestamp,
                                            std::size_t frame_index) {
-  if (bgr.empty()) {
-    throw Error(Name() + ": frame " + std::to_string(frame_index) + " is an empty image");
-  }
+  RequireFrameImage(Name(), bgr, frame_index);
   const std::string path = MaskPath(timestamp);
-  const cv::Mat labels = ReadLabelImage(path, bgr.size());
-  Segmentation result;
-  result.timestamp = timestamp;
-  result.frame_index = frame_index;
-  result.image_size = bgr.size();
-  result.instances = InstancesFromLabels(labels);
+  Segmentation result = SegmentationFromLabelFile(path, bgr.size(), timestamp, frame_index);
   for (Instance& instance : result.instances) {
     const auto position = position_of_id_.find(instance.source_id);
     if (position == position_of_id_.end()) {
