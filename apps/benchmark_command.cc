@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "command_registry.h"
-#include "drvslam/benchmark_report.h"
-#include "drvslam/benchmark_runner.h"
 #include "drvslam/core/error.h"
+#include "drvslam/tools/runner/benchmark_report.h"
+#include "drvslam/tools/runner/benchmark_runner.h"
 #include "progress_bar.h"
 
 namespace drvslam::cli {

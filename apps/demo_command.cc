@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "command_registry.h"
-#include "drvslam/demo_runner.h"
+#include "drvslam/tools/runner/demo_runner.h"
 
 namespace drvslam::cli {
 namespace {

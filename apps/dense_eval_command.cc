@@ -11,8 +11,9 @@
 
 #include "command_registry.h"
 #include "drvslam/core/error.h"
-#include "drvslam/dense/dense_evaluation.h"
 #include "drvslam/dense/dense_stats_json.h"
+#include "drvslam/tools/truth/dense_evaluation.h"
+#include "drvslam/tools/truth/dense_truth_json.h"
 #include "progress_bar.h"
 
 namespace drvslam::cli {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "command_registry.h"
-#include "drvslam/sequence_runner.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "progress_bar.h"
 
 namespace drvslam::cli {
@@ -81,8 +81,9 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   std::printf("wrote:       %s/{CameraTrajectory.txt,KeyFrameTrajectory.txt,stats.json}\n",
               out_dir.c_str());
   if (s.dense) {
-    std::printf("             %s/{dense_map.ply,dense_map.pcd,dense_map.bt,dense_map_labels.json}\n",
-                out_dir.c_str());
+    std::printf(
+        "             %s/{dense_map.ply,dense_map.pcd,dense_map.bt,dense_map_labels.json}\n",
+        out_dir.c_str());
   }
 }
 

@@ -12,9 +12,9 @@
 #include "command_registry.h"
 #include "drvslam/core/error.h"
 #include "drvslam/loop/default_vocabulary.h"
-#include "drvslam/loop/place_recognition_eval.h"
-#include "drvslam/loop/training_images.h"
 #include "drvslam/loop/vocabulary_io.h"
+#include "drvslam/tools/vocab/place_recognition_eval.h"
+#include "drvslam/tools/vocab/training_images.h"
 #include "progress_bar.h"
 
 namespace {

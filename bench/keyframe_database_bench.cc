@@ -16,7 +16,6 @@
 #include "drvslam/loop/default_vocabulary.h"
 #include "drvslam/loop/keyframe_database.h"
 #include "drvslam/loop/relocalizer.h"
-#include "drvslam/loop/training_images.h"
 #include "drvslam/loop/vocabulary_io.h"
 #include "drvslam/map/map.h"
 #include "drvslam/match/bow_matcher.h"
@@ -25,6 +24,7 @@
 #include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
 #include "drvslam/system_options.h"
+#include "drvslam/tools/vocab/training_images.h"
 #include "drvslam/tracking/frame_factory.h"
 #include "drvslam/tracking/tracker_options.h"
 

@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "drvslam/io/tum_dataset.h"
-#include "drvslam/semantic/ground_truth_segmenter.h"
 #include "drvslam/semantic/yolo_segmenter.h"
+#include "drvslam/tools/truth/ground_truth_segmenter.h"
 
 namespace {
 

@@ -1,14 +1,111 @@
+# The module graph, enforced at configure time.
+#
+# drvslam_declare_module(NAME LAYER runtime|tools MAY_USE module...) states, before any module is
+# built, which layer a module belongs to and which other modules it may link. A runtime module may
+# use runtime modules only; a tools module may use both layers. drvslam_module() then builds the
+# module and refuses (FATAL_ERROR) any drvslam module in its DEPS that its declaration does not
+# allow, and drvslam_check_module_graph() checks every module's final link interface the same way,
+# so a target_link_libraries() written beside drvslam_module() cannot get round the rule.
+# docs/architecture.md explains the graph.
+
+function(drvslam_declare_module name)
+  cmake_parse_arguments(ARG "" "LAYER" "MAY_USE" ${ARGN})
+  if(NOT ARG_LAYER STREQUAL "runtime" AND NOT ARG_LAYER STREQUAL "tools")
+    message(FATAL_ERROR "drvslam module '${name}': LAYER must be runtime or tools, "
+                        "got '${ARG_LAYER}'")
+  endif()
+  get_property(known GLOBAL PROPERTY DRVSLAM_DECLARED_MODULES)
+  if(name IN_LIST known)
+    message(FATAL_ERROR "drvslam module '${name}' is declared twice")
+  endif()
+  foreach(used ${ARG_MAY_USE})
+    if(NOT used IN_LIST known)
+      message(FATAL_ERROR "drvslam module '${name}' may use '${used}', which is not declared "
+                          "before it: declare modules bottom-up")
+    endif()
+    get_property(used_layer GLOBAL PROPERTY DRVSLAM_LAYER_${used})
+    if(ARG_LAYER STREQUAL "runtime" AND NOT used_layer STREQUAL "runtime")
+      message(FATAL_ERROR "drvslam runtime module '${name}' may not use the ${used_layer} "
+                          "module '${used}': the runtime library links no tools")
+    endif()
+  endforeach()
+  set_property(GLOBAL APPEND PROPERTY DRVSLAM_DECLARED_MODULES ${name})
+  set_property(GLOBAL PROPERTY DRVSLAM_LAYER_${name} ${ARG_LAYER})
+  set_property(GLOBAL PROPERTY DRVSLAM_MAY_USE_${name} ${ARG_MAY_USE})
+endfunction()
+
+# The drvslam modules a list of link items names: "drvslam_map" and "$<LINK_ONLY:drvslam_map>"
+# both name map; targets that are not declared modules (drvslam_octomap) are left out.
+function(drvslam_modules_named out)
+  get_property(known GLOBAL PROPERTY DRVSLAM_DECLARED_MODULES)
+  set(found)
+  foreach(item ${ARGN})
+    string(REGEX MATCHALL "drvslam_[a-z_]+" names "${item}")
+    foreach(target_name ${names})
+      string(REGEX REPLACE "^drvslam_" "" module "${target_name}")
+      if(module IN_LIST known)
+        list(APPEND found ${module})
+      endif()
+    endforeach()
+  endforeach()
+  list(REMOVE_DUPLICATES found)
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+
+function(drvslam_require_allowed name)
+  get_property(allowed GLOBAL PROPERTY DRVSLAM_MAY_USE_${name})
+  get_property(layer GLOBAL PROPERTY DRVSLAM_LAYER_${name})
+  drvslam_modules_named(used ${ARGN})
+  foreach(module ${used})
+    if(NOT module STREQUAL name AND NOT module IN_LIST allowed)
+      get_property(used_layer GLOBAL PROPERTY DRVSLAM_LAYER_${module})
+      message(FATAL_ERROR "drvslam ${layer} module '${name}' links the ${used_layer} module "
+                          "'${module}', which its declaration does not allow (may use: "
+                          "${allowed}). Move the code, or change the declaration in "
+                          "src/drvslam/CMakeLists.txt and docs/architecture.md together.")
+    endif()
+  endforeach()
+endfunction()
+
 # drvslam_module(NAME SOURCES ... DEPS ...)
-# One static library per module folder: target drvslam_<NAME>. DEPS lists what it links publicly;
-# modules may only depend on modules above them in DESIGN.md's layout table.
+# One static library per module folder: target drvslam_<NAME>. DEPS lists what it links publicly.
+# The module must have been declared; its DEPS may name only the modules the declaration allows.
 function(drvslam_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  get_property(layer GLOBAL PROPERTY DRVSLAM_LAYER_${name})
+  if(NOT layer)
+    message(FATAL_ERROR "drvslam module '${name}' is built but not declared with "
+                        "drvslam_declare_module() in src/drvslam/CMakeLists.txt")
+  endif()
+  drvslam_require_allowed(${name} ${ARG_DEPS})
   add_library(drvslam_${name} STATIC ${ARG_SOURCES})
   target_include_directories(drvslam_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>
                                                     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_options(drvslam_${name} PRIVATE -Wall -Wextra)
   target_link_libraries(drvslam_${name} PUBLIC ${ARG_DEPS})
   set_property(GLOBAL APPEND PROPERTY DRVSLAM_MODULES drvslam_${name})
+  if(layer STREQUAL "runtime")
+    set_property(GLOBAL APPEND PROPERTY DRVSLAM_RUNTIME_MODULES drvslam_${name})
+  else()
+    set_property(GLOBAL APPEND PROPERTY DRVSLAM_TOOLS_MODULES drvslam_${name})
+  endif()
+endfunction()
+
+# After every module exists: each module's links, private ones included, obey its declaration.
+function(drvslam_check_module_graph)
+  get_property(modules GLOBAL PROPERTY DRVSLAM_MODULES)
+  foreach(target_name ${modules})
+    string(REGEX REPLACE "^drvslam_" "" name "${target_name}")
+    get_target_property(links ${target_name} LINK_LIBRARIES)
+    get_target_property(interface_links ${target_name} INTERFACE_LINK_LIBRARIES)
+    set(all_links)
+    foreach(list_name links interface_links)
+      if(${list_name})
+        list(APPEND all_links ${${list_name}})
+      endif()
+    endforeach()
+    drvslam_require_allowed(${name} ${all_links})
+  endforeach()
 endfunction()
 
 # drvslam_test(NAME SOURCES ... DEPS ...): one GoogleTest executable registered with CTest.

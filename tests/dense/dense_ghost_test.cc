@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "drvslam/dense/dense_mapper.h"
-#include "drvslam/dense/dense_truth.h"
-#include "drvslam/dense/synthetic_dense_frame.h"
 #include "drvslam/synth/synth_sequence.h"
+#include "drvslam/tools/truth/dense_truth.h"
+#include "drvslam/tools/truth/synthetic_dense_frame.h"
 
 namespace drvslam {
 namespace {

@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "drvslam/core/error.h"
-#include "drvslam/dense/dense_evaluation.h"
-#include "drvslam/sequence_runner.h"
 #include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/runner/sequence_runner.h"
+#include "drvslam/tools/truth/dense_evaluation.h"
 
 namespace drvslam {
 namespace {

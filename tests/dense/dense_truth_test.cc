@@ -1,4 +1,4 @@
-#include "drvslam/dense/dense_truth.h"
+#include "drvslam/tools/truth/dense_truth.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "drvslam/core/error.h"
-#include "drvslam/dense/dense_stats_json.h"
+#include "drvslam/tools/truth/dense_truth_json.h"
 
 namespace drvslam {
 namespace {

@@ -1,6 +1,6 @@
 // How `drvslam run` picks its segmenter and dynamic handling: defaults from the dataset, the
 // command line over the settings file, and errors that name the option.
-#include "drvslam/dynamic/dynamic_run_setup.h"
+#include "drvslam/tools/runner/dynamic_run_setup.h"
 
 #include <gtest/gtest.h>
 

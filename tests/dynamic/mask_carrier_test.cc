@@ -12,11 +12,11 @@
 
 #include "drvslam/core/coco_classes.h"
 #include "drvslam/core/error.h"
-#include "drvslam/dynamic/mask_carry_eval.h"
 #include "drvslam/io/tum_dataset.h"
-#include "drvslam/semantic/ground_truth_segmenter.h"
 #include "drvslam/semantic/object_mask_carrier.h"
 #include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/truth/ground_truth_segmenter.h"
+#include "drvslam/tools/truth/mask_carry_eval.h"
 
 namespace drvslam {
 namespace {

@@ -1,6 +1,6 @@
 // Motion-state scores: precision and recall are undefined (JSON null), not perfect, when there is
 // nothing to score.
-#include "drvslam/dynamic/motion_state_eval.h"
+#include "drvslam/tools/truth/motion_state_eval.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // PixelIndex: the truncation static_cast<int> gives, and no pixel (instead of undefined
 // behaviour) for NaN, infinite or out-of-range flow positions.
-#include "drvslam/dynamic/pixel_index.h"
+#include "drvslam/core/pixel_index.h"
 
 #include <gtest/gtest.h>
 

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "drvslam/benchmark_list.h"
-#include "drvslam/benchmark_report.h"
-#include "drvslam/benchmark_runner.h"
 #include "drvslam/core/error.h"
+#include "drvslam/tools/runner/benchmark_list.h"
+#include "drvslam/tools/runner/benchmark_report.h"
+#include "drvslam/tools/runner/benchmark_runner.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {

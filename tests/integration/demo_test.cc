@@ -9,8 +9,8 @@
 
 #include "../semantic/test_data.h"
 #include "drvslam/core/error.h"
-#include "drvslam/cutout_sequence.h"
-#include "drvslam/demo_runner.h"
+#include "drvslam/tools/runner/cutout_sequence.h"
+#include "drvslam/tools/runner/demo_runner.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {

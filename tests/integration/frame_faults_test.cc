@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
-#include "drvslam/sequence_runner.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {

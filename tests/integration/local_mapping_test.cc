@@ -11,9 +11,9 @@
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/mapping/map_consistency.h"
-#include "drvslam/sequence_runner.h"
 #include "drvslam/system.h"
 #include "drvslam/system_options.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
 

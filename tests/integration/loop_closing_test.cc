@@ -12,7 +12,7 @@
 
 #include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
-#include "drvslam/sequence_runner.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 #include "test_support/missing_data.h"
 

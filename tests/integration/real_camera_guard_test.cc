@@ -13,7 +13,7 @@
 
 #include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
-#include "drvslam/sequence_runner.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {

@@ -16,10 +16,10 @@
 #include "drvslam/core/timing.h"
 #include "drvslam/io/realtime_feeder.h"
 #include "drvslam/io/tum_dataset.h"
-#include "drvslam/semantic/ground_truth_segmenter.h"
 #include "drvslam/system.h"
 #include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
+#include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
 

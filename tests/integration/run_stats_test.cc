@@ -10,7 +10,7 @@
 #include <string>
 #include <thread>
 
-#include "drvslam/sequence_runner.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {

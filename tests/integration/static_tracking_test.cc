@@ -10,7 +10,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
-#include "drvslam/sequence_runner.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {

@@ -9,11 +9,11 @@
 #include <string>
 
 #include "../semantic/test_data.h"
-#include "drvslam/cutout_sequence.h"
 #include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/semantic/yolo_segmenter.h"
-#include "drvslam/sequence_runner.h"
+#include "drvslam/tools/runner/cutout_sequence.h"
+#include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {

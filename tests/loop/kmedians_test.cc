@@ -9,7 +9,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/feature/descriptor_distance.h"
-#include "drvslam/loop/vocabulary_trainer.h"
+#include "drvslam/tools/vocab/vocabulary_trainer.h"
 #include "vocabulary_test_util.h"
 
 namespace drvslam {

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
-#include "drvslam/loop/place_recognition_eval.h"
-#include "drvslam/loop/training_images.h"
-#include "drvslam/loop/vocabulary_trainer.h"
+#include "drvslam/tools/vocab/place_recognition_eval.h"
+#include "drvslam/tools/vocab/training_images.h"
+#include "drvslam/tools/vocab/vocabulary_trainer.h"
 #include "test_support/missing_data.h"
 #include "vocabulary_test_util.h"
 

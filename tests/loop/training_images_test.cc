@@ -1,5 +1,5 @@
 // Which images and frames vocabulary training reads, and how.
-#include "drvslam/loop/training_images.h"
+#include "drvslam/tools/vocab/training_images.h"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
-#include "drvslam/loop/vocabulary_trainer.h"
+#include "drvslam/tools/vocab/vocabulary_trainer.h"
 #include "vocabulary_test_util.h"
 
 namespace drvslam {

@@ -1,5 +1,5 @@
 // Vocabulary training: the tree's shape, determinism, and TF-IDF word weights.
-#include "drvslam/loop/vocabulary_trainer.h"
+#include "drvslam/tools/vocab/vocabulary_trainer.h"
 
 #include <gtest/gtest.h>
 

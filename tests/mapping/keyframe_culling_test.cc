@@ -7,12 +7,8 @@
 #include "synthetic_map.h"
 
 namespace drvslam {
+namespace test {
 namespace {
-
-using test::CameraAt;
-using test::SyntheticMap;
-using test::SyntheticScene;
-using test::ViewOptions;
 
 // Six keyframes within a few centimetres, all seeing the same points.
 void BuildHover(SyntheticScene& scene, SyntheticMap& map, double near_z, double far_z) {
@@ -171,4 +167,5 @@ TEST(KeyFrameCullingTest, TheTrajectoryDoesNotKeepRemovedKeyFramesOrTheirPoints)
 }
 
 }  // namespace
+}  // namespace test
 }  // namespace drvslam

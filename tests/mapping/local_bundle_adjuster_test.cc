@@ -9,13 +9,8 @@
 #include "synthetic_map.h"
 
 namespace drvslam {
+namespace test {
 namespace {
-
-using test::CameraAt;
-using test::PositionError;
-using test::SyntheticMap;
-using test::SyntheticScene;
-using test::ViewOptions;
 
 // Eight keyframes along a 3.5 m path over a wall of points: the last keyframe is covisible with
 // its recent predecessors only, so the early ones see local points but are held fixed.
@@ -143,4 +138,5 @@ TEST_F(LocalBundleAdjusterTest, ARaisedInterruptLeavesTheMapAlone) {
 }
 
 }  // namespace
+}  // namespace test
 }  // namespace drvslam

@@ -9,11 +9,8 @@
 #include "synthetic_map.h"
 
 namespace drvslam {
+namespace test {
 namespace {
-
-using test::CameraAt;
-using test::SyntheticScene;
-using test::ViewOptions;
 
 constexpr int kKeyFrames = 10;
 
@@ -196,4 +193,5 @@ TEST(LocalMapperTest, RejectsBadOptions) {
 }
 
 }  // namespace
+}  // namespace test
 }  // namespace drvslam

@@ -5,12 +5,8 @@
 #include "synthetic_map.h"
 
 namespace drvslam {
+namespace test {
 namespace {
-
-using test::CameraAt;
-using test::SyntheticMap;
-using test::SyntheticScene;
-using test::ViewOptions;
 
 bool Mentions(const std::vector<std::string>& problems, const std::string& text) {
   for (const auto& problem : problems) {
@@ -124,4 +120,5 @@ TEST_F(MapConsistencyTest, LongListsAreCut) {
 }
 
 }  // namespace
+}  // namespace test
 }  // namespace drvslam

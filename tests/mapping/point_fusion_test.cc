@@ -6,12 +6,8 @@
 #include "synthetic_map.h"
 
 namespace drvslam {
+namespace test {
 namespace {
-
-using test::CameraAt;
-using test::SyntheticMap;
-using test::SyntheticScene;
-using test::ViewOptions;
 
 TEST(PointFusionTest, DuplicatesMergeAndUnmappedFeaturesGainObservations) {
   SyntheticScene scene;
@@ -75,4 +71,5 @@ TEST(PointFusionTest, DifferentPointsAreNotMerged) {
 }
 
 }  // namespace
+}  // namespace test
 }  // namespace drvslam

@@ -6,12 +6,8 @@
 #include "synthetic_map.h"
 
 namespace drvslam {
+namespace test {
 namespace {
-
-using test::CameraAt;
-using test::SyntheticMap;
-using test::SyntheticScene;
-using test::ViewOptions;
 
 // Five keyframes at one place, all seeing the same 20 points; points 10-19 are mapped in all of
 // them (so the keyframes are connected), the test links points 0-9 by hand. Keypoint k is scene
@@ -114,4 +110,5 @@ TEST_F(RecentPointCullingTest, PointsMadeBadElsewhereLeaveTheListAndTheMap) {
 }
 
 }  // namespace
+}  // namespace test
 }  // namespace drvslam

@@ -8,12 +8,8 @@
 #include "synthetic_map.h"
 
 namespace drvslam {
+namespace test {
 namespace {
-
-using test::CameraAt;
-using test::SyntheticMap;
-using test::SyntheticScene;
-using test::ViewOptions;
 
 TEST(TriangulateTwoViewsTest, RecoversAKnownPoint) {
   const Eigen::Vector3d point(0.4, -0.3, 3.1);
@@ -125,4 +121,5 @@ TEST(CreateNewMapPointsTest, RejectsMatchesThatDoNotReproject) {
 }
 
 }  // namespace
+}  // namespace test
 }  // namespace drvslam

@@ -1,13 +1,16 @@
-#include "drvslam/semantic/ground_truth_segmenter.h"
+#include "drvslam/tools/truth/ground_truth_segmenter.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "drvslam/semantic/segmenter_factory.h"
+#include "drvslam/tools/truth/evaluation_segmenter_factory.h"
 #include "test_data.h"
 
 namespace drvslam {
@@ -66,6 +69,21 @@ TEST_F(GroundTruthSegmenterTest, GivesExactMasksClassesAndMotionFlags) {
   EXPECT_FALSE(segmenter.IsMoving(42, 1305031102.175304));
   EXPECT_FALSE(segmenter.IsMoving(1, 1.0));
   EXPECT_EQ(segmenter.Instances().instances.size(), 3u);
+}
+
+// The runtime factory refuses the oracle; the tools' factory builds it from the sequence folder
+// and leaves every other backend to the runtime factory.
+TEST_F(GroundTruthSegmenterTest, OnlyTheEvaluationFactoryBuildsIt) {
+  SegmentationOptions options;
+  options.backend = SegmenterBackend::kGroundTruth;
+  EXPECT_THROW(CreateSegmenter(options, dir_.string()), Error);
+  const std::unique_ptr<Segmenter> segmenter = CreateEvaluationSegmenter(options, dir_.string());
+  ASSERT_NE(segmenter, nullptr);
+  EXPECT_EQ(segmenter->Segment(image_, 1305031102.175304, 0).instances.size(), 3u);
+  EXPECT_THROW(CreateEvaluationSegmenter(options, ""), Error);
+  EXPECT_THROW(CreateEvaluationSegmenter(options, (dir_ / "masks").string()), Error);
+  options.backend = SegmenterBackend::kNone;
+  EXPECT_EQ(CreateEvaluationSegmenter(options, dir_.string()), nullptr);
 }
 
 TEST_F(GroundTruthSegmenterTest, MissingFilesAndWrongSizesAreNamed) {

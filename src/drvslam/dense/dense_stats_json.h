@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include "drvslam/dense/dense_mapper.h"
-#include "drvslam/dense/dense_truth.h"
 
 namespace drvslam {
 
@@ -20,11 +19,6 @@ nlohmann::json DenseStatsJson(const DenseMapStats& stats);
 // What the dense map's point count is reduced against (DenseMapStats::full_resolution_points).
 inline constexpr const char* kDenseReductionBaseline =
     "full resolution: one point per valid, non-excluded depth pixel of every integrated keyframe";
-
-// {"points", "ghosts", "ghost_share", "distance": {"mean", "median", "p95", "static_mean",
-//  "static_p95"}, "key_object_points", "background_points", "key_object_density",
-//  "background_density"}; a value over no points is null
-nlohmann::json DenseTruthScoresJson(const DenseTruthScores& scores);
 
 // Bytes of one point in dense_map.ply (x y z float, r g b uchar, label short).
 inline constexpr double kPlyBytesPerPoint = 17.0;

@@ -9,19 +9,13 @@
 #include "drvslam/core/error.h"
 #include "drvslam/dynamic/dynamic_drawing.h"
 #include "drvslam/dynamic/feature_floor.h"
-#include "drvslam/dynamic/pixel_index.h"
+#include "drvslam/core/pixel_index.h"
 #include "drvslam/dynamic/removal_policy.h"
+#include "drvslam/semantic/mask_lookup.h"
 #include "drvslam/semantic/mask_propagator.h"
 
 namespace drvslam {
 namespace {
-
-bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  cv::Point pixel;
-  if (!PixelIndex(p, &pixel)) return false;
-  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= mask.cols || pixel.y >= mask.rows) return false;
-  return mask.at<uint8_t>(pixel) != 0;
-}
 
 void CheckMasks(const std::vector<Instance>& instances, const cv::Size& size,
                 std::size_t frame_index) {
@@ -58,6 +52,37 @@ RemovalCandidate DescribeObjectRemoval(const cv::Point2f& p, const std::vector<I
     candidate.evidence = std::max({0.0, object.moving_share, object.reprojection_share});
   }
   return candidate;
+}
+
+// Where each feature goes in step 4, before the floor brings some back.
+enum class FeatureFate : uint8_t { kKept, kOnObject, kUnlabelled };
+
+// On the objects' removal mask, else on an unlabelled moving region (that mask may be empty).
+std::vector<FeatureFate> JudgeFeatures(const std::vector<cv::KeyPoint>& keypoints,
+                                       const cv::Mat& object_mask, const cv::Mat& unlabelled_mask) {
+  std::vector<FeatureFate> fates(keypoints.size(), FeatureFate::kKept);
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    if (OnMask(object_mask, keypoints[i].pt)) {
+      fates[i] = FeatureFate::kOnObject;
+    } else if (OnMask(unlabelled_mask, keypoints[i].pt)) {
+      fates[i] = FeatureFate::kUnlabelled;
+    }
+  }
+  return fates;
+}
+
+// The features of `features` at `rows` (their keypoints are `kept`), on the same geometry.
+std::shared_ptr<const FrameFeatures> KeptFeatures(const FrameFeatures& features,
+                                                  const std::vector<int>& rows,
+                                                  const std::vector<cv::KeyPoint>& kept,
+                                                  const cv::Mat& depth) {
+  const cv::Mat& all = features.Descriptors();
+  cv::Mat descriptors(static_cast<int>(rows.size()), all.cols, all.type());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    all.row(rows[r]).copyTo(descriptors.row(static_cast<int>(r)));
+  }
+  return std::make_shared<const FrameFeatures>(features.GeometryPtr(),
+                                               std::vector<cv::KeyPoint>(kept), descriptors, depth);
 }
 
 // The moving points of the strongest region holding `p` (0 when none does).
@@ -291,16 +316,42 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   return out;
 }
 
+// The paper's four steps, in order; each leaves what the next one needs.
 Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth) {
   if (!begun_) throw Error("DynamicFrontEnd: Filter called without BeginFrame");
   begun_ = false;
+  const std::shared_ptr<const FrameFeatures> extracted = frame.FeaturesPtr();
+
+  MotionRegions regions = ConstrainMotionRegions(frame, bgr);
+  const Stopwatch removal_watch;  // steps 2 to 4 are timed together as "removal"
+  const IdAssignment ids = AssignObjectIds(regions);
+  std::vector<ObjectEvidence> objects = ClassifyMotionStates(*extracted, regions, ids);
+  RemovalOutcome removal;
+  Frame filtered = RemoveDynamicFeatures(std::move(frame), depth, regions, objects, &removal);
+  Record("removal", removal_watch.ElapsedMs());
+
+  RecordStatistics(regions, objects, removal, extracted->Keypoints().size());
+  RememberFrame(std::move(regions), std::move(objects), std::move(removal.regions), extracted,
+                depth, removal.plan.share);
+  if (!config_.debug_dir.empty()) {
+    WriteDebugPicture(bgr, removal.kept, removal.removed);
+    WriteObjectRows();
+    WriteFrameRow();
+  }
+  ++next_index_;
+  return filtered;
+}
+
+DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Frame& frame,
+                                                                       const cv::Mat& bgr) {
   const DynamicOptions& o = config_.options;
-  const cv::Size size = bgr.size();
+  MotionRegions regions;
+  regions.size = bgr.size();
   Segmentation segmentation;
   if (!carry_objects_) segmentation = MasksFor(frame.Timestamp(), bgr);
 
-  // Step 1: motion consistency of the previous frame's features: the flow tracks first (masks
-  // carried by object need them), the tests once the masks are known.
+  // The flow tracks first (masks carried by object need them), the tests once the masks are
+  // known.
   Stopwatch consistency_watch;
   cv::Mat gray;
   if (bgr.type() == CV_8UC3) {
@@ -308,168 +359,172 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   } else {
     gray = bgr;
   }
-  FlowImage flow = BuildFlowImage(gray, o);
-  const SharpnessJudgement sharpness = blur_.Observe(gray);
-  report_.sharpness = sharpness;
-  const bool has_previous = previous_ && previous_->flow.size == size;
+  regions.flow = BuildFlowImage(gray, o);
+  report_.sharpness = blur_.Observe(gray);
+  const bool has_previous = previous_ && previous_->flow.size == regions.size;
   std::vector<FlowTrack> tracks;
-  if (has_previous) {
-    // Objects need every track they can get (IDs, motion states); the background only enough
-    // for a well-determined model, so it is thinned out evenly.
-    const std::vector<cv::KeyPoint>& keypoints = previous_->features->Keypoints();
-    std::vector<int> on_objects;
-    std::vector<int> background;
-    for (std::size_t i = 0; i < keypoints.size(); ++i) {
-      (OnMask(previous_->exclusion, keypoints[i].pt) ? on_objects : background)
-          .push_back(static_cast<int>(i));
-    }
-    const std::size_t budget = static_cast<std::size_t>(o.max_flow_points);
-    if (on_objects.size() > budget / 2) on_objects.resize(budget / 2);
-    const std::size_t left = budget - on_objects.size();
-    const std::size_t stride = background.size() > left ? (background.size() + left - 1) / left : 1;
-    std::vector<cv::Point2f> points;
-    std::vector<int> ids;
-    for (const int i : on_objects) {
-      points.push_back(keypoints[i].pt);
-      ids.push_back(i);
-    }
-    for (std::size_t k = 0; k < background.size(); k += stride) {
-      points.push_back(keypoints[background[k]].pt);
-      ids.push_back(background[k]);
-    }
-    tracks = consistency_.Track(previous_->flow, flow, points, ids);
-  }
+  if (has_previous) tracks = TrackPreviousFeatures(regions.flow);
   double consistency_ms = consistency_watch.ElapsedMs();
-  if (carry_objects_) segmentation = CarriedMasksFor(frame.Timestamp(), size, tracks);
-  std::vector<Instance> instances = std::move(segmentation.instances);
-  std::vector<bool> potentially_moving(instances.size(), false);
-  for (std::size_t k = 0; k < instances.size(); ++k) {
-    potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
+  if (carry_objects_) segmentation = CarriedMasksFor(frame.Timestamp(), regions.size, tracks);
+  regions.instances = std::move(segmentation.instances);
+  regions.potentially_moving.assign(regions.instances.size(), false);
+  for (std::size_t k = 0; k < regions.instances.size(); ++k) {
+    regions.potentially_moving[k] =
+        classes_ && classes_->IsPotentiallyMoving(regions.instances[k].class_id);
   }
   const Stopwatch test_watch;
   RemovalPlan all_moving;
-  all_moving.remove = potentially_moving;
-  const cv::Mat exclusion = RemovalMask(instances, all_moving, size, o);
-  MotionConsistencyResult motion;
+  all_moving.remove = regions.potentially_moving;
+  regions.exclusion = RemovalMask(regions.instances, all_moving, regions.size, o);
   if (has_previous) {
-    motion = consistency_.Test(std::move(tracks), size, previous_->exclusion, exclusion,
-                               previous_->depth, &frame.Geometry().camera);
+    regions.motion =
+        consistency_.Test(std::move(tracks), regions.size, previous_->exclusion, regions.exclusion,
+                          previous_->depth, &frame.Geometry().camera);
   }
   consistency_ms += test_watch.ElapsedMs();
   Record("motion_consistency", consistency_ms);
+  return regions;
+}
 
-  const Stopwatch removal_watch;
-  // Step 2: object IDs.
+std::vector<FlowTrack> DynamicFrontEnd::TrackPreviousFeatures(const FlowImage& flow) {
+  // Objects need every track they can get (IDs, motion states); the background only enough for
+  // a well-determined model, so it is thinned out evenly.
+  const std::vector<cv::KeyPoint>& keypoints = previous_->features->Keypoints();
+  std::vector<int> on_objects;
+  std::vector<int> background;
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    (OnMask(previous_->exclusion, keypoints[i].pt) ? on_objects : background)
+        .push_back(static_cast<int>(i));
+  }
+  const std::size_t budget = static_cast<std::size_t>(config_.options.max_flow_points);
+  if (on_objects.size() > budget / 2) on_objects.resize(budget / 2);
+  const std::size_t left = budget - on_objects.size();
+  const std::size_t stride = background.size() > left ? (background.size() + left - 1) / left : 1;
+  std::vector<cv::Point2f> points;
+  std::vector<int> ids;
+  for (const int i : on_objects) {
+    points.push_back(keypoints[i].pt);
+    ids.push_back(i);
+  }
+  for (std::size_t k = 0; k < background.size(); k += stride) {
+    points.push_back(keypoints[background[k]].pt);
+    ids.push_back(background[k]);
+  }
+  return consistency_.Track(previous_->flow, flow, points, ids);
+}
+
+IdAssignment DynamicFrontEnd::AssignObjectIds(MotionRegions& regions) {
   std::vector<Instance> no_previous;
   std::vector<Instance>& previous_instances = previous_ ? previous_->instances : no_previous;
-  const IdAssignment assignment = ids_.Assign(previous_instances, instances, motion.tracks);
+  return ids_.Assign(previous_instances, regions.instances, regions.motion.tracks);
+}
 
-  // Step 3: motion states.
-  const std::shared_ptr<const FrameFeatures> all_features = frame.FeaturesPtr();
-  const FrameFeatures& features = *all_features;
-  const FeatureView no_features{&features.Keypoints(), &features.Descriptors()};
+std::vector<ObjectEvidence> DynamicFrontEnd::ClassifyMotionStates(const FrameFeatures& features,
+                                                                  const MotionRegions& regions,
+                                                                  const IdAssignment& ids) {
+  const std::vector<Instance> no_previous;
+  const std::vector<Instance>& previous_instances = previous_ ? previous_->instances : no_previous;
+  const FeatureView current_features{&features.Keypoints(), &features.Descriptors()};
   const FeatureView previous_features = previous_ ? FeatureView{&previous_->features->Keypoints(),
                                                                 &previous_->features->Descriptors()}
-                                                  : no_features;
-  const FeatureView current_features{&features.Keypoints(), &features.Descriptors()};
+                                                  : current_features;
   std::vector<ObjectEvidence> objects =
-      classifier_.Classify(previous_instances, instances, potentially_moving, assignment, motion,
-                           previous_features, current_features);
-  const bool model_ok = motion.model != MotionModel::kNone;
-  std::vector<bool> moving(instances.size(), false);
-  for (std::size_t k = 0; k < objects.size(); ++k) moving[k] = objects[k].moving;
-
+      classifier_.Classify(previous_instances, regions.instances, regions.potentially_moving, ids,
+                           regions.motion, previous_features, current_features);
   // Map points of objects that started moving go before this frame is tracked.
-  if (o.cull_moving_points) report_.map_points_culled = culler_.CullMoving(objects, map_);
+  if (config_.options.cull_moving_points) {
+    report_.map_points_culled = culler_.CullMoving(objects, map_);
+  }
+  return objects;
+}
 
-  // Step 4: adaptive removal, plus moving things no detector names.
-  const RemovalPlan plan = PlanRemoval(instances, potentially_moving, moving, model_ok, size, o);
-  const cv::Mat object_mask = RemovalMask(instances, plan, size, o);
-  std::vector<MovingRegion> regions = FindTrustedUnlabelledMotion(motion, exclusion, depth, size);
+Frame DynamicFrontEnd::RemoveDynamicFeatures(Frame frame, const cv::Mat& depth,
+                                             const MotionRegions& regions,
+                                             const std::vector<ObjectEvidence>& objects,
+                                             RemovalOutcome* outcome) {
+  const DynamicOptions& o = config_.options;
+  const cv::Size& size = regions.size;
+  std::vector<bool> moving(regions.instances.size(), false);
+  for (std::size_t k = 0; k < objects.size(); ++k) moving[k] = objects[k].moving;
+  const bool model_ok = regions.motion.model != MotionModel::kNone;
+  outcome->plan =
+      PlanRemoval(regions.instances, regions.potentially_moving, moving, model_ok, size, o);
+  const cv::Mat object_mask = RemovalMask(regions.instances, outcome->plan, size, o);
+  // Moving things no detector names.
+  outcome->regions = FindTrustedUnlabelledMotion(regions.motion, regions.exclusion, depth, size);
   cv::Mat unlabelled_mask;
-  if (!regions.empty()) {
+  if (!outcome->regions.empty()) {
     unlabelled_mask = cv::Mat::zeros(size, CV_8UC1);
-    PaintRegions(regions, unlabelled_mask);
+    PaintRegions(outcome->regions, unlabelled_mask);
   }
-  const std::vector<cv::KeyPoint>& keypoints = features.Keypoints();
-  enum class Fate : uint8_t { kKept, kOnObject, kUnlabelled };
-  std::vector<Fate> fates(keypoints.size(), Fate::kKept);
-  int kept_count = 0;
-  for (std::size_t i = 0; i < keypoints.size(); ++i) {
-    if (OnMask(object_mask, keypoints[i].pt)) {
-      fates[i] = Fate::kOnObject;
-    } else if (!unlabelled_mask.empty() && OnMask(unlabelled_mask, keypoints[i].pt)) {
-      fates[i] = Fate::kUnlabelled;
-    } else {
-      ++kept_count;
-    }
-  }
+  const std::shared_ptr<const FrameFeatures> features = frame.FeaturesPtr();
+  const std::vector<cv::KeyPoint>& keypoints = features->Keypoints();
+  std::vector<FeatureFate> fates = JudgeFeatures(keypoints, object_mask, unlabelled_mask);
+  const int kept_count =
+      static_cast<int>(std::count(fates.begin(), fates.end(), FeatureFate::kKept));
   // The floor: tracking keeps enough features, the least believed removals going back first.
   if (kept_count < o.min_kept_features && kept_count < static_cast<int>(keypoints.size())) {
     std::vector<RemovalCandidate> candidates;
     for (std::size_t i = 0; i < keypoints.size(); ++i) {
-      if (fates[i] == Fate::kKept) continue;
+      if (fates[i] == FeatureFate::kKept) continue;
       RemovalCandidate candidate;
-      if (fates[i] == Fate::kOnObject) {
-        candidate =
-            DescribeObjectRemoval(keypoints[i].pt, instances, objects, plan, o.mask_dilation);
+      if (fates[i] == FeatureFate::kOnObject) {
+        candidate = DescribeObjectRemoval(keypoints[i].pt, regions.instances, objects,
+                                          outcome->plan, o.mask_dilation);
       } else {
-        candidate.evidence = RegionEvidence(keypoints[i].pt, regions);
+        candidate.evidence = RegionEvidence(keypoints[i].pt, outcome->regions);
       }
       candidate.feature = static_cast<int>(i);
       candidate.response = keypoints[i].response;
       candidates.push_back(candidate);
     }
     for (const int i : KeepBack(std::move(candidates), kept_count, o.min_kept_features)) {
-      fates[i] = Fate::kKept;
+      fates[i] = FeatureFate::kKept;
       ++report_.kept_back;
     }
   }
-  std::vector<cv::KeyPoint> kept;
-  std::vector<cv::KeyPoint> removed;
   std::vector<int> kept_rows;
-  kept.reserve(keypoints.size());
+  outcome->kept.reserve(keypoints.size());
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
-    if (fates[i] == Fate::kKept) {
-      kept.push_back(keypoints[i]);
+    if (fates[i] == FeatureFate::kKept) {
+      outcome->kept.push_back(keypoints[i]);
       kept_rows.push_back(static_cast<int>(i));
       continue;
     }
-    ++(fates[i] == Fate::kOnObject ? report_.removed_on_objects : report_.removed_unlabelled);
-    removed.push_back(keypoints[i]);
+    ++(fates[i] == FeatureFate::kOnObject ? report_.removed_on_objects
+                                          : report_.removed_unlabelled);
+    outcome->removed.push_back(keypoints[i]);
   }
-  Frame filtered = [&] {
-    if (removed.empty()) return std::move(frame);
-    cv::Mat descriptors(static_cast<int>(kept_rows.size()), features.Descriptors().cols,
-                        features.Descriptors().type());
-    for (std::size_t r = 0; r < kept_rows.size(); ++r) {
-      features.Descriptors().row(kept_rows[r]).copyTo(descriptors.row(static_cast<int>(r)));
-    }
-    auto kept_features = std::make_shared<const FrameFeatures>(
-        features.GeometryPtr(), std::vector<cv::KeyPoint>(kept), descriptors, depth);
-    return Frame(frame.Id(), frame.Timestamp(), std::move(kept_features));
-  }();
-  Record("removal", removal_watch.ElapsedMs());
+  if (outcome->removed.empty()) return frame;
+  return Frame(frame.Id(), frame.Timestamp(),
+               KeptFeatures(*features, kept_rows, outcome->kept, depth));
+}
 
-  // Bookkeeping for the next frame, the report and the statistics.
+void DynamicFrontEnd::RecordStatistics(const MotionRegions& regions,
+                                       const std::vector<ObjectEvidence>& objects,
+                                       const RemovalOutcome& removal,
+                                       std::size_t features_extracted) {
+  const DynamicOptions& o = config_.options;
+  const MotionConsistencyResult& motion = regions.motion;
+  const bool model_ok = motion.model != MotionModel::kNone;
   report_.model = motion.model;
   report_.pose_ok = motion.pose_ok;
   report_.tracks = static_cast<int>(motion.tracks.size());
   report_.moving_points = motion.moving_points;
-  report_.share = plan.share;
-  report_.large_share = plan.large_share;
-  report_.features_extracted = static_cast<int>(keypoints.size());
+  report_.share = removal.plan.share;
+  report_.large_share = removal.plan.large_share;
+  report_.features_extracted = static_cast<int>(features_extracted);
   ++stats_.frames;
   if (model_ok) ++stats_.frames_with_model;
   if (motion.model == MotionModel::kHomography) ++stats_.frames_homography;
-  if (plan.large_share) ++stats_.frames_large_share;
-  stats_.features_extracted += keypoints.size();
-  stats_.features_removed += removed.size();
+  if (removal.plan.large_share) ++stats_.frames_large_share;
+  stats_.features_extracted += features_extracted;
+  stats_.features_removed += removal.removed.size();
   stats_.removed_on_objects += report_.removed_on_objects;
   stats_.removed_unlabelled += report_.removed_unlabelled;
-  stats_.unlabelled_regions += regions.size();
+  stats_.unlabelled_regions += removal.regions.size();
   stats_.map_points_culled += report_.map_points_culled;
-  if (sharpness.blurred) ++stats_.frames_blurred;
+  if (report_.sharpness.blurred) ++stats_.frames_blurred;
   if (report_.unlabelled_weighed) {
     switch (report_.unlabelled_evidence.verdict) {
       case UnlabelledVerdict::kTrusted:
@@ -501,24 +556,23 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
     moving_class_ids_.insert(object.track_id);
   }
   stats_.ids_issued = moving_class_ids_.size();
+}
 
+void DynamicFrontEnd::RememberFrame(MotionRegions regions, std::vector<ObjectEvidence> objects,
+                                    std::vector<MovingRegion> unlabelled,
+                                    std::shared_ptr<const FrameFeatures> extracted,
+                                    const cv::Mat& depth, double share) {
   moving_instances_.clear();
-  for (std::size_t k = 0; k < instances.size(); ++k) {
-    if (potentially_moving[k] && moving[k]) moving_instances_.push_back(instances[k]);
+  for (std::size_t k = 0; k < regions.instances.size(); ++k) {
+    const bool moving = k < objects.size() && objects[k].moving;
+    if (regions.potentially_moving[k] && moving) moving_instances_.push_back(regions.instances[k]);
   }
-  previous_share_ = plan.share;
-  previous_ = Previous{std::move(flow), all_features, instances, exclusion,
-                       depth.empty() ? cv::Mat() : depth.clone()};
-  report_.instances = std::move(instances);
+  previous_share_ = share;
+  previous_ = Previous{std::move(regions.flow), std::move(extracted), regions.instances,
+                       std::move(regions.exclusion), depth.empty() ? cv::Mat() : depth.clone()};
+  report_.instances = std::move(regions.instances);
   report_.objects = std::move(objects);
-  report_.unlabelled = std::move(regions);
-  if (!config_.debug_dir.empty()) {
-    WriteDebugPicture(bgr, kept, removed);
-    WriteObjectRows();
-    WriteFrameRow();
-  }
-  ++next_index_;
-  return filtered;
+  report_.unlabelled = std::move(unlabelled);
 }
 
 std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(

@@ -52,6 +52,7 @@
 #include "drvslam/dynamic/motion_trust.h"
 #include "drvslam/dynamic/moving_point_culler.h"
 #include "drvslam/dynamic/object_tracker.h"
+#include "drvslam/dynamic/removal_policy.h"
 #include "drvslam/dynamic/unlabelled_motion.h"
 #include "drvslam/map/frame.h"
 #include "drvslam/map/map.h"
@@ -168,7 +169,9 @@ class DynamicFrontEnd {
   // After tracking the frame: whether it became a keyframe (for the keyframe statistics).
   void NoteKeyFrame(bool became_keyframe);
   // `frame` was extracted from `bgr` (the image BeginFrame got) with `depth` (CV_32FC1 metres).
-  // Returns the frame with the removed features taken out (same id and timestamp).
+  // Returns the frame with the removed features taken out (same id and timestamp). The paper's
+  // four steps, one call each: ConstrainMotionRegions, AssignObjectIds, ClassifyMotionStates,
+  // RemoveDynamicFeatures.
   Frame Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth);
   // `tracked`: the frame after successful tracking (its map-point slots filled).
   void AfterTracking(const Frame& tracked);
@@ -185,6 +188,50 @@ class DynamicFrontEnd {
     cv::Mat depth;      // CV_32FC1 metres (may be empty)
   };
 
+  // What step 1 leaves for the later ones.
+  struct MotionRegions {
+    cv::Size size;                         // the image's
+    FlowImage flow;                        // this frame's, for the next frame's tracks
+    std::vector<Instance> instances;       // this frame's masks (own or carried)
+    std::vector<bool> potentially_moving;  // per instance: its class can move
+    cv::Mat exclusion;                     // the potentially-moving masks, dilated
+    MotionConsistencyResult motion;        // tracks from the previous frame, tested
+  };
+  // What step 4 decided, for the statistics and the debug output.
+  struct RemovalOutcome {
+    RemovalPlan plan;
+    std::vector<MovingRegion> regions;  // unlabelled moving regions removed
+    std::vector<cv::KeyPoint> kept;
+    std::vector<cv::KeyPoint> removed;
+  };
+
+  // Step 1, motion-region constraint: the frame's masks (own or carried), its flow tracks from
+  // the previous frame, and their test against the camera's motion outside the masks of
+  // classes that can move. Fills the report's sharpness.
+  MotionRegions ConstrainMotionRegions(const Frame& frame, const cv::Mat& bgr);
+  // The previous frame's features tracked into `flow`: every one on an object, the background
+  // thinned evenly to Dynamic.maxFlowPoints.
+  std::vector<FlowTrack> TrackPreviousFeatures(const FlowImage& flow);
+  // Step 2, object IDs: each instance linked to its predecessor through the flow tracks.
+  IdAssignment AssignObjectIds(MotionRegions& regions);
+  // Step 3, motion states: each object's moving or static verdict from its tracks and the
+  // features around it; the map points of objects found moving are culled.
+  std::vector<ObjectEvidence> ClassifyMotionStates(const FrameFeatures& features,
+                                                   const MotionRegions& regions,
+                                                   const IdAssignment& ids);
+  // Step 4, adaptive removal: the removal plan by object share and state, unlabelled moving
+  // regions, the feature floor; returns the frame without the removed features.
+  Frame RemoveDynamicFeatures(Frame frame, const cv::Mat& depth, const MotionRegions& regions,
+                              const std::vector<ObjectEvidence>& objects, RemovalOutcome* outcome);
+  // The frame's report fields and the run's statistics.
+  void RecordStatistics(const MotionRegions& regions, const std::vector<ObjectEvidence>& objects,
+                        const RemovalOutcome& removal, std::size_t features_extracted);
+  // Keeps what the next frame needs (Previous, the moving objects) and hands the rest to the
+  // report.
+  void RememberFrame(MotionRegions regions, std::vector<ObjectEvidence> objects,
+                     std::vector<MovingRegion> unlabelled,
+                     std::shared_ptr<const FrameFeatures> extracted, const cv::Mat& depth,
+                     double share);
   Segmentation MasksFor(double timestamp, const cv::Mat& bgr);
   // Realtime keyframe priority: a likely keyframe waits up to Segmentation.keyframeWaitMs for
   // its own masks when the network is on its image or next to be; notes whether it has them.

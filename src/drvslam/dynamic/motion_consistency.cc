@@ -7,17 +7,11 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "drvslam/core/error.h"
-#include "drvslam/dynamic/pixel_index.h"
+#include "drvslam/core/pixel_index.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 namespace {
-
-bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  cv::Point pixel;
-  if (mask.empty() || !PixelIndex(p, &pixel)) return false;
-  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= mask.cols || pixel.y >= mask.rows) return false;
-  return mask.at<uint8_t>(pixel) != 0;
-}
 
 bool NearBorder(const cv::Point2f& p, const cv::Size& size, int margin) {
   return p.x < margin || p.y < margin || p.x >= size.width - margin || p.y >= size.height - margin;

@@ -6,18 +6,12 @@
 #include <unordered_map>
 
 #include "drvslam/core/error.h"
-#include "drvslam/dynamic/pixel_index.h"
+#include "drvslam/core/pixel_index.h"
 #include "drvslam/feature/descriptor_distance.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 namespace {
-
-bool OnMask(const cv::Mat& mask, const cv::Point2f& p) {
-  cv::Point pixel;
-  if (!PixelIndex(p, &pixel)) return false;
-  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= mask.cols || pixel.y >= mask.rows) return false;
-  return mask.at<uint8_t>(pixel) != 0;
-}
 
 // Buckets of feature indices on a square grid, for radius queries.
 class PointGrid {
@@ -83,7 +77,7 @@ RingCount CountRingMatches(const cv::Rect& ring, const cv::Mat& mask, const Feat
     const cv::Point2f& p = cur_kps[i].pt;
     cv::Point pixel;
     if (!PixelIndex(p, &pixel) || !ring.contains(pixel)) continue;
-    if (!mask.empty() && OnMask(mask, p)) continue;
+    if (OnMask(mask, p)) continue;
     inside.push_back(i);
   }
   count.features = static_cast<int>(inside.size());

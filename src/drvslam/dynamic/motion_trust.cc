@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "drvslam/core/error.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 namespace {
@@ -13,14 +14,6 @@ double Median(std::vector<double> values) {
   const auto middle = values.begin() + (values.size() - 1) / 2;
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
-}
-
-bool Labelled(const cv::Mat& mask, const cv::Point2f& p) {
-  if (mask.empty()) return false;
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
-  if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) return false;
-  return mask.at<uint8_t>(y, x) != 0;
 }
 
 }  // namespace
@@ -82,7 +75,7 @@ UnlabelledEvidence WeighUnlabelledEvidence(const MotionConsistencyResult& motion
     track.moving = track.moving && track.residual > evidence.epipolar_threshold;
     track.reprojection_moving =
         track.reprojection_moving && track.reprojection > evidence.reprojection_threshold;
-    if (Labelled(labelled, track.cur)) continue;
+    if (OnMask(labelled, track.cur)) continue;
     if (motion.model == MotionModel::kNone && track.reprojection < 0.0) continue;
     ++evidence.tested;
     if (track.MovingBest()) ++evidence.moving;

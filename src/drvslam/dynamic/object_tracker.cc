@@ -5,21 +5,17 @@
 #include <tuple>
 
 #include "drvslam/core/error.h"
-#include "drvslam/dynamic/pixel_index.h"
+#include "drvslam/core/pixel_index.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 
 int InstanceAt(const std::vector<Instance>& instances, const cv::Point2f& p) {
   cv::Point pixel;
   if (!PixelIndex(p, &pixel)) return -1;
-  const int x = pixel.x;
-  const int y = pixel.y;
   for (std::size_t k = 0; k < instances.size(); ++k) {
     const Instance& instance = instances[k];
-    if (!instance.box.contains(cv::Point(x, y))) continue;
-    const cv::Mat& mask = instance.mask;
-    if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) continue;
-    if (mask.at<uint8_t>(y, x) != 0) return static_cast<int>(k);
+    if (instance.box.contains(pixel) && OnMask(instance.mask, p)) return static_cast<int>(k);
   }
   return -1;
 }

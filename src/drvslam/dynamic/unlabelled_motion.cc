@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "drvslam/core/error.h"
-#include "drvslam/dynamic/pixel_index.h"
+#include "drvslam/core/pixel_index.h"
 
 namespace drvslam {
 namespace {

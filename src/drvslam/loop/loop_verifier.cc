@@ -6,9 +6,9 @@
 
 #include "drvslam/feature/descriptor_distance.h"
 #include "drvslam/match/bow_matcher.h"
+#include "drvslam/match/pose_observations.h"
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/optim/rigid_transform_ransac.h"
-#include "drvslam/tracking/pose_observations.h"
 
 namespace drvslam {
 namespace {

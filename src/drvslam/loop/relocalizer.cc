@@ -11,8 +11,8 @@
 #include "drvslam/map/map_point.h"
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/keyframe_projection.h"
+#include "drvslam/match/pose_observations.h"
 #include "drvslam/optim/pose_optimizer.h"
-#include "drvslam/tracking/pose_observations.h"
 
 namespace drvslam {
 namespace {

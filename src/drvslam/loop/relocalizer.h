@@ -13,7 +13,7 @@
 #include "drvslam/loop/bow_vocabulary.h"
 #include "drvslam/loop/keyframe_database.h"
 #include "drvslam/loop/relocalization_options.h"
-#include "drvslam/tracking/place_recognition.h"
+#include "drvslam/map/place_recognition.h"
 
 namespace drvslam {
 

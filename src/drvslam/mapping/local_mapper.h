@@ -19,10 +19,10 @@
 #include "drvslam/core/bounded_queue.h"
 #include "drvslam/core/timing.h"
 #include "drvslam/map/map.h"
+#include "drvslam/map/mapping_status.h"
 #include "drvslam/mapping/local_mapping_options.h"
 #include "drvslam/mapping/recent_point_culling.h"
 #include "drvslam/match/orb_matcher.h"
-#include "drvslam/tracking/mapping_status.h"
 
 namespace drvslam {
 

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/option_check.h"
 #include "drvslam/optim/bundle_costs.h"
 #include "drvslam/optim/se3_manifold.h"
 
@@ -236,25 +237,18 @@ class BundleSolver {
   std::unique_ptr<InterruptCallback> callback_;
 };
 
-template <typename T>
-void Require(bool ok, const char* key, T value, const char* rule) {
-  if (ok) return;
-  std::ostringstream message;
-  message << key << " = " << value << " " << rule;
-  throw Error(message.str());
-}
-
 }  // namespace
 
 void LocalBundleAdjustmentOptions::Check() const {
-  Require(first_pass_iterations >= 1, "LocalBundleAdjustmentOptions.first_pass_iterations",
-          first_pass_iterations, "must be at least 1");
-  Require(second_pass_iterations >= 0, "LocalBundleAdjustmentOptions.second_pass_iterations",
-          second_pass_iterations, "must be >= 0");
-  Require(std::isfinite(chi2_mono) && chi2_mono > 0.0, "LocalBundleAdjustmentOptions.chi2_mono",
-          chi2_mono, "must be a positive number");
-  Require(std::isfinite(chi2_stereo) && chi2_stereo > 0.0,
-          "LocalBundleAdjustmentOptions.chi2_stereo", chi2_stereo, "must be a positive number");
+  RequireOption(first_pass_iterations >= 1, "LocalBundleAdjustmentOptions.first_pass_iterations",
+                first_pass_iterations, "must be at least 1");
+  RequireOption(second_pass_iterations >= 0, "LocalBundleAdjustmentOptions.second_pass_iterations",
+                second_pass_iterations, "must be >= 0");
+  RequireOption(std::isfinite(chi2_mono) && chi2_mono > 0.0,
+                "LocalBundleAdjustmentOptions.chi2_mono", chi2_mono, "must be a positive number");
+  RequireOption(std::isfinite(chi2_stereo) && chi2_stereo > 0.0,
+                "LocalBundleAdjustmentOptions.chi2_stereo", chi2_stereo,
+                "must be a positive number");
 }
 
 LocalBundleAdjustmentResult SolveLocalBundleAdjustment(const CameraOptions& camera,

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/option_check.h"
 #include "drvslam/optim/pose_costs.h"
 #include "drvslam/optim/pose_levenberg_marquardt.h"
 #include "drvslam/optim/pose_optimizer_variants.h"
@@ -22,14 +23,6 @@ namespace {
 
 // ORB-SLAM2 leaves the pose alone with fewer matches than this: it would be underdetermined.
 constexpr int kMinActiveObservations = 3;
-
-template <typename T>
-void Require(bool ok, const char* key, T value, const char* rule) {
-  if (ok) return;
-  std::ostringstream message;
-  message << key << " = " << value << " " << rule;
-  throw Error(message.str());
-}
 
 void CheckObservation(const PoseObservation& observation, size_t index) {
   const char* problem = nullptr;
@@ -177,13 +170,13 @@ std::unique_ptr<RoundSolver> MakeRoundSolver(PoseSolver solver,
 }  // namespace
 
 void PoseOptimizerOptions::Check() const {
-  Require(rounds >= 1, "PoseOptimizerOptions.rounds", rounds, "must be at least 1");
-  Require(iterations_per_round >= 1, "PoseOptimizerOptions.iterations_per_round",
-          iterations_per_round, "must be at least 1");
-  Require(std::isfinite(chi2_mono) && chi2_mono > 0.0, "PoseOptimizerOptions.chi2_mono", chi2_mono,
-          "must be a positive number");
-  Require(std::isfinite(chi2_stereo) && chi2_stereo > 0.0, "PoseOptimizerOptions.chi2_stereo",
-          chi2_stereo, "must be a positive number");
+  RequireOption(rounds >= 1, "PoseOptimizerOptions.rounds", rounds, "must be at least 1");
+  RequireOption(iterations_per_round >= 1, "PoseOptimizerOptions.iterations_per_round",
+                iterations_per_round, "must be at least 1");
+  RequireOption(std::isfinite(chi2_mono) && chi2_mono > 0.0, "PoseOptimizerOptions.chi2_mono",
+                chi2_mono, "must be a positive number");
+  RequireOption(std::isfinite(chi2_stereo) && chi2_stereo > 0.0, "PoseOptimizerOptions.chi2_stereo",
+                chi2_stereo, "must be a positive number");
 }
 
 PoseOptimizationResult OptimizePose(const CameraOptions& camera, const SE3& initial_T_cw,

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/option_check.h"
 
 namespace drvslam {
 namespace {
@@ -30,14 +31,6 @@ struct Consensus {
   int count = 0;
   double residual_sum = std::numeric_limits<double>::infinity();  // breaks ties in count
 };
-
-template <typename T>
-void Require(bool ok, const char* key, T value, const char* rule) {
-  if (ok) return;
-  std::ostringstream message;
-  message << key << " = " << value << " " << rule;
-  throw Error(message.str());
-}
 
 void CheckInput(const char* function, const std::vector<Eigen::Vector3d>& a,
                 const std::vector<Eigen::Vector3d>& b, const std::vector<double>& tolerance) {
@@ -180,11 +173,12 @@ Consensus Estimate(const std::vector<Eigen::Vector3d>& a, const std::vector<Eige
 }  // namespace
 
 void RigidRansacOptions::Check() const {
-  Require(max_iterations >= 1, "RigidRansacOptions.max_iterations", max_iterations,
-          "must be at least 1");
-  Require(min_inliers >= 3, "RigidRansacOptions.min_inliers", min_inliers, "must be at least 3");
-  Require(std::isfinite(probability) && probability > 0.0 && probability < 1.0,
-          "RigidRansacOptions.probability", probability, "must lie in (0, 1)");
+  RequireOption(max_iterations >= 1, "RigidRansacOptions.max_iterations", max_iterations,
+                "must be at least 1");
+  RequireOption(min_inliers >= 3, "RigidRansacOptions.min_inliers", min_inliers,
+                "must be at least 3");
+  RequireOption(std::isfinite(probability) && probability > 0.0 && probability < 1.0,
+                "RigidRansacOptions.probability", probability, "must lie in (0, 1)");
 }
 
 RigidRansacResult EstimateRigidTransformRansac(const std::vector<Eigen::Vector3d>& a,

@@ -83,6 +83,23 @@ cv::Mat ReadLabelImage(const std::string& path, cv::Size expected_size) {
   return image;
 }
 
+void RequireFrameImage(const std::string& backend, const cv::Mat& bgr, std::size_t frame_index) {
+  if (bgr.empty()) {
+    throw Error(backend + ": frame " + std::to_string(frame_index) + " is an empty image");
+  }
+}
+
+Segmentation SegmentationFromLabelFile(const std::string& path, const cv::Size& image_size,
+                                       double timestamp, std::size_t frame_index) {
+  const cv::Mat labels = ReadLabelImage(path, image_size);
+  Segmentation result;
+  result.timestamp = timestamp;
+  result.frame_index = frame_index;
+  result.image_size = image_size;
+  result.instances = InstancesFromLabels(labels);
+  return result;
+}
+
 std::vector<Instance> InstancesFromLabels(const cv::Mat& labels) {
   if (labels.channels() != 1 || (labels.depth() != CV_8U && labels.depth() != CV_16U)) {
     throw Error("label image must be one channel of 8- or 16-bit ids");

@@ -22,6 +22,16 @@ cv::Mat ReadLabelImage(const std::string& path, cv::Size expected_size);
 // and a full-size 0/255 mask. Class fields are left for the caller.
 std::vector<Instance> InstancesFromLabels(const cv::Mat& labels);
 
+// Throws drvslam::Error naming `backend` and the frame when `bgr` is empty: a label file is
+// matched to a frame by its image, so an empty one cannot be segmented.
+void RequireFrameImage(const std::string& backend, const cv::Mat& bgr, std::size_t frame_index);
+
+// The segmentation the label image at `path` gives a frame of `image_size`: ReadLabelImage, then
+// InstancesFromLabels, stamped with the frame's time and index. Class fields are left for the
+// caller.
+Segmentation SegmentationFromLabelFile(const std::string& path, const cv::Size& image_size,
+                                       double timestamp, std::size_t frame_index);
+
 // File stems that are numbers, sorted, for nearest-timestamp lookup.
 class StampIndex {
  public:

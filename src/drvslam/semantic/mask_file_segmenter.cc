@@ -144,16 +144,9 @@ std::string MaskFileSegmenter::MaskPath(double timestamp, std::size_t frame_inde
 
 Segmentation MaskFileSegmenter::Segment(const cv::Mat& bgr, double timestamp,
                                         std::size_t frame_index) {
-  if (bgr.empty()) {
-    throw Error(Name() + ": frame " + std::to_string(frame_index) + " is an empty image");
-  }
+  RequireFrameImage(Name(), bgr, frame_index);
   const std::string path = MaskPath(timestamp, frame_index);
-  const cv::Mat labels = ReadLabelImage(path, bgr.size());
-  Segmentation result;
-  result.timestamp = timestamp;
-  result.frame_index = frame_index;
-  result.image_size = bgr.size();
-  result.instances = InstancesFromLabels(labels);
+  Segmentation result = SegmentationFromLabelFile(path, bgr.size(), timestamp, frame_index);
   for (Instance& instance : result.instances) {
     const auto listed = class_of_id_.find(instance.source_id);
     instance.class_id = listed != class_of_id_.end() ? listed->second : default_class_;

@@ -7,16 +7,14 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
 namespace {
 
 bool Inside(const Instance& instance, const cv::Point2f& p) {
-  const int x = static_cast<int>(p.x);
-  const int y = static_cast<int>(p.y);
-  if (!instance.box.contains(cv::Point(x, y))) return false;
-  if (x < 0 || y < 0 || x >= instance.mask.cols || y >= instance.mask.rows) return false;
-  return instance.mask.at<uint8_t>(y, x) != 0;
+  const cv::Point pixel(static_cast<int>(p.x), static_cast<int>(p.y));
+  return instance.box.contains(pixel) && OnMask(instance.mask, p);
 }
 
 float Median(std::vector<float> values) {

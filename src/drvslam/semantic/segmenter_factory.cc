@@ -3,7 +3,6 @@
 #include <filesystem>
 
 #include "drvslam/core/error.h"
-#include "drvslam/semantic/ground_truth_segmenter.h"
 #include "drvslam/semantic/mask_file_segmenter.h"
 #include "drvslam/semantic/yolo_segmenter.h"
 
@@ -22,8 +21,11 @@ std::unique_ptr<Segmenter> CreateSegmenter(const SegmentationOptions& options,
       return std::make_unique<MaskFileSegmenter>(dir.string(), options, std::move(frame_names));
     }
     case SegmenterBackend::kGroundTruth:
-      if (dataset_dir.empty()) throw Error("the gt segmenter needs the sequence folder");
-      return std::make_unique<GroundTruthSegmenter>(dataset_dir);
+      // Ground-truth masks exist only for synthetic sequences: an evaluation oracle, built by
+      // the tools library so that the runtime never links the renderer's file formats.
+      throw Error(
+          "Segmentation.backend gt: the ground-truth segmenter is an evaluation tool, not part "
+          "of the runtime library; build it with CreateEvaluationSegmenter (drvslam_tools)");
     case SegmenterBackend::kNone:
       return nullptr;
   }

@@ -12,8 +12,9 @@
 namespace drvslam {
 
 // yolo: options.model; masks: options.masks_dir (relative paths under `dataset_dir`), with
-// `frame_names` (each frame's colour image file) when known; gt: the synthetic sequence in
-// `dataset_dir`; none: nullptr. Throws drvslam::Error from the backend's constructor.
+// `frame_names` (each frame's colour image file) when known; none: nullptr. Throws
+// drvslam::Error from the backend's constructor, and for gt: ground-truth masks are an
+// evaluation backend (tools/truth/evaluation_segmenter_factory.h builds it).
 std::unique_ptr<Segmenter> CreateSegmenter(const SegmentationOptions& options,
                                            const std::string& dataset_dir = "",
                                            std::vector<std::string> frame_names = {});

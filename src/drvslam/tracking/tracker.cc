@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include "drvslam/match/bow_matcher.h"
+#include "drvslam/match/pose_observations.h"
 #include "drvslam/tracking/keyframe_factory.h"
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/observation_weight.h"
-#include "drvslam/tracking/pose_observations.h"
 
 namespace drvslam {
 namespace {

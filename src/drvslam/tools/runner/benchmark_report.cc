@@ -1,0 +1,332 @@
+#include "drvslam/tools/runner/benchmark_report.h"
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "drvslam/core/error.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Printf(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
+std::string Printf(const char* format, ...) {
+  char buffer[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  return buffer;
+}
+
+const char* StatusName(RunStatus status) {
+  switch (status) {
+    case RunStatus::kOk:
+      return "ok";
+    case RunStatus::kFailed:
+      return "failed";
+    case RunStatus::kInterrupted:
+      return "interrupted";
+  }
+  return "?";
+}
+
+// Markdown table cells cannot hold '|' or line breaks.
+std::string Cell(std::string text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '|')
+      text.replace(i++, 1, "\\|");
+    else if (text[i] == '\n')
+      text[i] = ' ';
+  }
+  return text;
+}
+
+std::string Centimetres(double metres) { return Printf("%.2f", 100.0 * metres); }
+
+bool AnyFramesSkipped(const BenchmarkReport& report) {
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    if (entry.aggregate.frames_skipped) return true;
+  }
+  return false;
+}
+
+std::string RunsCell(const BenchmarkEntryResult& entry) {
+  const BenchmarkAggregate& a = entry.aggregate;
+  std::size_t failed = 0;
+  for (const BenchmarkRun& run : entry.runs) failed += run.status == RunStatus::kFailed;
+  std::string cell = Printf("%zu/%d", a.finished, entry.runs_requested);
+  if (failed > 0) cell += Printf(" (%zu FAILED)", failed);
+  return cell;
+}
+
+std::string SummaryRow(const BenchmarkEntryResult& entry, bool with_skipped) {
+  const BenchmarkAggregate& a = entry.aggregate;
+  const std::string na = "n/a";
+  std::string row = "| " + Cell(entry.entry.name) + " | " + Cell(SegmenterLabel(entry)) + " | " +
+                    (entry.dynamic_on ? "on" : "off") + " | " + entry.entry.mode + " | " +
+                    RunsCell(entry) + " | ";
+  // Frames per run: the first finished run's (all runs of an entry read the same frames).
+  const auto finished =
+      std::find_if(entry.runs.begin(), entry.runs.end(),
+                   [](const BenchmarkRun& run) { return run.status == RunStatus::kOk; });
+  row += (finished != entry.runs.end() ? std::to_string(finished->frames) : na) + " | ";
+  if (a.evaluated > 0) {
+    std::string median = Centimetres(a.ate_rmse.median);
+    if (a.evaluated < a.finished) median += Printf(" (%zu of %zu runs)", a.evaluated, a.finished);
+    row += median + " | " + Centimetres(a.ate_rmse.min) + " | " + Centimetres(a.ate_rmse.max) +
+           " | " + Centimetres(a.ate_rmse.std) + " | ";
+  } else {
+    row += na + " | " + na + " | " + na + " | " + na + " | ";
+  }
+  row += (a.rpe_trans_rmse.count > 0 ? Centimetres(a.rpe_trans_rmse.median) : na) + " | ";
+  row += (a.rpe_rot_rmse_deg.count > 0 ? Printf("%.3f", a.rpe_rot_rmse_deg.median) : na) + " | ";
+  if (a.finished > 0) {
+    row += Printf("%.1f%% | %.1f%% | %.0f | %.1f | %.1f | %.1f | %.1f |",
+                  100.0 * a.tracked_share.median, 100.0 * a.tracked_share.min, a.frames_lost.median,
+                  a.wall_s.median, a.fps.median, a.track_median_ms.median, a.track_p95_ms.median);
+  } else {
+    row += "n/a | n/a | n/a | n/a | n/a | n/a | n/a |";
+  }
+  if (with_skipped) {
+    row += a.frames_skipped
+               ? Printf(" %.0f (max %.0f) |", a.frames_skipped->median, a.frames_skipped->max)
+               : " n/a |";
+  }
+  return row + "\n";
+}
+
+std::string RunRow(const BenchmarkEntryResult& entry, const BenchmarkRun& run, bool with_skipped) {
+  const std::string na = "n/a";
+  std::string row = "| " + Cell(entry.entry.name) + " | " + std::to_string(run.index) + " | " +
+                    (run.status == RunStatus::kOk       ? "ok"
+                     : run.status == RunStatus::kFailed ? "**FAILED**"
+                                                        : "interrupted") +
+                    " | ";
+  if (run.status == RunStatus::kFailed) {
+    row += "n/a | n/a | n/a | n/a | n/a | " + Printf("%.1f", run.wall_s) + " | n/a | n/a | n/a |";
+    if (with_skipped) row += " n/a |";
+    return row + " " + Cell(run.error) + " |\n";
+  }
+  row += (run.ate_rmse ? Centimetres(*run.ate_rmse) : na) + " | ";
+  row += (run.rpe_trans_rmse ? Centimetres(*run.rpe_trans_rmse) : na) + " | ";
+  row += (run.rpe_rot_rmse_deg ? Printf("%.3f", *run.rpe_rot_rmse_deg) : na) + " | ";
+  row += Printf("%zu/%zu (%.1f%%) | %zu | %.1f | %.1f | %.1f | %.1f |", run.tracked, run.frames,
+                100.0 * run.tracked_share, run.frames_lost, run.wall_s, run.fps,
+                run.track_median_ms, run.track_p95_ms);
+  if (with_skipped) row += run.frames_skipped ? Printf(" %zu |", *run.frames_skipped) : " n/a |";
+  return row + " " + Cell(run.eval_note) + " |\n";
+}
+
+nlohmann::json StatisticsJson(const ErrorStatistics& s) {
+  if (s.count == 0) return nullptr;
+  return {{"count", s.count}, {"median", s.median}, {"min", s.min},
+          {"max", s.max},     {"std", s.std},       {"mean", s.mean}};
+}
+
+template <typename T>
+nlohmann::json OrNull(const std::optional<T>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json TextOrNull(const std::string& text) {
+  return text.empty() ? nlohmann::json(nullptr) : nlohmann::json(text);
+}
+
+nlohmann::json RunJson(const BenchmarkRun& run) {
+  const bool measured = run.status != RunStatus::kFailed;
+  nlohmann::json json = {{"run", run.index},
+                         {"out_dir", run.out_dir},
+                         {"status", StatusName(run.status)},
+                         {"error", TextOrNull(run.error)},
+                         {"wall_s", run.wall_s}};
+  if (!measured) return json;
+  json.update(nlohmann::json{{"frames", run.frames},
+                             {"tracked", run.tracked},
+                             {"tracked_share", run.tracked_share},
+                             {"frames_lost", run.frames_lost},
+                             {"ate_rmse_m", OrNull(run.ate_rmse)},
+                             {"ate_coverage", OrNull(run.ate_coverage)},
+                             {"rpe_trans_rmse_m", OrNull(run.rpe_trans_rmse)},
+                             {"rpe_rot_rmse_deg", OrNull(run.rpe_rot_rmse_deg)},
+                             {"eval_note", TextOrNull(run.eval_note)},
+                             {"fps", run.fps},
+                             {"track_median_ms", run.track_median_ms},
+                             {"track_p95_ms", run.track_p95_ms},
+                             {"vocabulary_load_ms", run.vocabulary_load_ms},
+                             {"frames_skipped", OrNull(run.frames_skipped)}});
+  return json;
+}
+
+nlohmann::json AggregateJson(const BenchmarkAggregate& a) {
+  nlohmann::json json = {{"runs", a.runs},
+                         {"finished", a.finished},
+                         {"evaluated", a.evaluated},
+                         {"ate_rmse_m", StatisticsJson(a.ate_rmse)},
+                         {"rpe_trans_rmse_m", StatisticsJson(a.rpe_trans_rmse)},
+                         {"rpe_rot_rmse_deg", StatisticsJson(a.rpe_rot_rmse_deg)},
+                         {"tracked_share", StatisticsJson(a.tracked_share)},
+                         {"frames_lost", StatisticsJson(a.frames_lost)},
+                         {"wall_s", StatisticsJson(a.wall_s)},
+                         {"fps", StatisticsJson(a.fps)},
+                         {"track_median_ms", StatisticsJson(a.track_median_ms)},
+                         {"track_p95_ms", StatisticsJson(a.track_p95_ms)}};
+  if (a.frames_skipped) json["frames_skipped"] = StatisticsJson(*a.frames_skipped);
+  return json;
+}
+
+void WriteWhole(const fs::path& path, const std::string& text) {
+  // Written beside and renamed: an interrupted write never leaves half a table.
+  const fs::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << text;
+    out.flush();
+    if (!out) throw Error(partial.string() + ": cannot write the benchmark report");
+  }
+  std::error_code error;
+  fs::rename(partial, path, error);
+  if (error) throw Error(path.string() + ": cannot write the benchmark report: " + error.message());
+}
+
+}  // namespace
+
+std::string SegmenterLabel(const BenchmarkEntryResult& entry) {
+  if (entry.oracle) return "gt (ORACLE masks)";
+  if (!entry.segmenter_used) return entry.segmenter == "none" ? "none" : "none (dynamic off)";
+  if (entry.segmenter == "yolo") return "yolo (" + fs::path(entry.model).filename().string() + ")";
+  if (entry.segmenter == "masks") return "masks (mask files)";
+  return entry.segmenter;
+}
+
+std::string FormatBenchmarkMarkdown(const BenchmarkReport& report) {
+  const MachineInfo& m = report.machine;
+  const std::size_t failed = report.FailedRuns();
+  std::string text = "# drvslam benchmark\n\n";
+  text += "- command: `" + report.command + "`\n";
+  text += "- working directory: `" + m.working_directory + "`\n";
+  text += "- date: " + m.date + "\n";
+  text += Printf(
+      "- machine: %u cores (nproc), %s; load average at the start %s (1, 5, 15 min, "
+      "/proc/loadavg)\n",
+      m.cores, m.cpu.empty() ? "CPU unknown" : m.cpu.c_str(),
+      m.load_average.empty() ? "unknown" : m.load_average.c_str());
+  std::string status = report.interrupted ? "interrupted (Ctrl-C): the tables hold the runs that "
+                                            "finished"
+                                          : "complete";
+  if (failed > 0)
+    status += Printf("; %zu run%s FAILED (see below)", failed, failed == 1 ? "" : "s");
+  text += "- status: " + status + "\n\n";
+
+  text +=
+      "Each run is `drvslam run` on the entry's sequence (commands below), evaluated against its "
+      "groundtruth.txt the TUM benchmark's way: ATE is the RMSE of the translational error after "
+      "rigid alignment (evaluate_ate.py), RPE the RMSE over pose pairs 1 s apart "
+      "(evaluate_rpe.py). Over an entry's runs: ATE median, min, max and std (population); RPE "
+      "median; tracked share median and min; frames lost (after initialization) median; wall "
+      "time of the whole run (start-up, shutdown and writing included) and frames per wall "
+      "second, median; the tracking thread's time per frame (stage `total`: each run's median "
+      "and p95, median over runs).\n\n";
+
+  const bool with_skipped = AnyFramesSkipped(report);
+  text +=
+      "| entry | segmenter | dynamic | mode | runs | frames | ATE median (cm) | ATE min (cm) | "
+      "ATE max (cm) | ATE std (cm) | RPE 1 s trans (cm) | RPE 1 s rot (deg) | tracked median | "
+      "tracked min | frames lost | wall (s) | fps | track ms median | track ms p95 |";
+  text += with_skipped ? " frames skipped |\n" : "\n";
+  text += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+  text += with_skipped ? "---|\n" : "\n";
+  bool any_oracle = false;
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    text += SummaryRow(entry, with_skipped);
+    any_oracle = any_oracle || entry.oracle;
+  }
+  text += "\n";
+  if (any_oracle) {
+    text +=
+        "**ORACLE masks:** rows whose segmenter reads \"gt (ORACLE masks)\" were segmented with "
+        "the sequence's ground-truth instance masks, not by a network. No real system has those "
+        "masks: these rows show what perfect segmentation would give, not what drvslam "
+        "perceives on its own.\n\n";
+  }
+
+  text += "## Commands\n\nRun k of an entry is this command with `--out` ending in `run_k`:\n\n";
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    text +=
+        "- " + entry.entry.name + " (" + entry.dynamic_setup + "): `" + entry.run_command + "`\n";
+  }
+  text += "\n";
+
+  if (failed > 0) {
+    text += "## Failed runs\n\n";
+    for (const BenchmarkEntryResult& entry : report.entries) {
+      for (const BenchmarkRun& run : entry.runs) {
+        if (run.status != RunStatus::kFailed) continue;
+        text +=
+            "- " + entry.entry.name + " run " + std::to_string(run.index) + ": " + run.error + "\n";
+      }
+    }
+    text += "\n";
+  }
+
+  text +=
+      "## Runs\n\n| entry | run | status | ATE (cm) | RPE trans (cm) | RPE rot (deg) | tracked | "
+      "frames lost | wall (s) | fps | track ms median | track ms p95 |";
+  text += with_skipped ? " frames skipped | note |\n" : " note |\n";
+  text += "|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+  text += with_skipped ? "---|\n" : "\n";
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    for (const BenchmarkRun& run : entry.runs) text += RunRow(entry, run, with_skipped);
+  }
+  return text;
+}
+
+nlohmann::json BenchmarkJson(const BenchmarkReport& report) {
+  const MachineInfo& m = report.machine;
+  nlohmann::json entries = nlohmann::json::array();
+  for (const BenchmarkEntryResult& result : report.entries) {
+    const BenchmarkEntry& e = result.entry;
+    nlohmann::json runs = nlohmann::json::array();
+    for (const BenchmarkRun& run : result.runs) runs.push_back(RunJson(run));
+    entries.push_back({{"name", e.name},
+                       {"dataset", e.dataset},
+                       {"config", e.config},
+                       {"segmenter", result.segmenter},
+                       {"segmenter_label", SegmenterLabel(result)},
+                       {"segmenter_used", result.segmenter_used},
+                       {"oracle", result.oracle},
+                       {"model", result.model},
+                       {"dynamic", result.dynamic_on ? "on" : "off"},
+                       {"dynamic_setup", result.dynamic_setup},
+                       {"mode", e.mode},
+                       {"dense", e.dense},
+                       {"loop", e.loop},
+                       {"max_frames", e.max_frames},
+                       {"runs_requested", result.runs_requested},
+                       {"run_command", result.run_command},
+                       {"aggregate", AggregateJson(result.aggregate)},
+                       {"runs", runs}});
+  }
+  return {{"command", report.command},
+          {"working_directory", m.working_directory},
+          {"date", m.date},
+          {"machine", {{"cores", m.cores}, {"cpu", m.cpu}, {"load_average", m.load_average}}},
+          {"interrupted", report.interrupted},
+          {"failed_runs", report.FailedRuns()},
+          {"entries", entries}};
+}
+
+void WriteBenchmarkReport(const BenchmarkReport& report, const std::string& out_dir) {
+  std::error_code error;
+  fs::create_directories(out_dir, error);
+  if (error || !fs::is_directory(out_dir)) throw Error(out_dir + ": cannot create output folder");
+  WriteWhole(fs::path(out_dir) / "benchmark.md", FormatBenchmarkMarkdown(report));
+  WriteWhole(fs::path(out_dir) / "benchmark.json", BenchmarkJson(report).dump(2) + "\n");
+}
+
+}  // namespace drvslam

@@ -1,0 +1,300 @@
+#include "drvslam/tools/runner/benchmark_runner.h"
+
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "drvslam/core/error.h"
+#include "drvslam/core/settings_file.h"
+#include "drvslam/eval/ate.h"
+#include "drvslam/eval/eval_report.h"
+#include "drvslam/eval/rpe.h"
+#include "drvslam/tools/runner/benchmark_report.h"
+#include "drvslam/tools/runner/dynamic_run_setup.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PreparedEntry {
+  BenchmarkEntryResult result;
+  Trajectory groundtruth;
+};
+
+// The segmenter the entry's runs will use, through the same resolution RunSequence applies
+// (ResolveDynamicRun on the settings file RunSequence would read). Building the segmenter here
+// also proves, before any run, that its model or masks load.
+void ResolveSegmenter(const BenchmarkEntry& entry, BenchmarkEntryResult* result) {
+  std::string config = entry.config;
+  const fs::path dataset_settings = fs::path(entry.dataset) / "settings.yaml";
+  std::error_code error;
+  if (config.empty() && fs::exists(dataset_settings, error)) config = dataset_settings.string();
+  SegmentationOptions segmentation;
+  DynamicOptions dynamic;
+  bool backend_in_settings = false;
+  if (!config.empty()) {
+    const SettingsFile file(config);
+    segmentation = LoadSegmentationOptions(file);
+    backend_in_settings = file.Has("Segmentation.backend");
+    dynamic = LoadDynamicOptions(file);
+  }
+  const RunOptions run = ToRunOptions(entry, "");
+  const DynamicRunSetup setup =
+      ResolveDynamicRun(run.dynamic, entry.dataset, segmentation, backend_in_settings, dynamic);
+  result->segmenter = ToString(setup.backend);
+  result->dynamic_on = setup.config.has_value();
+  result->segmenter_used = result->dynamic_on && setup.backend != SegmenterBackend::kNone;
+  result->oracle = setup.oracle;
+  if (setup.backend == SegmenterBackend::kYolo) {
+    result->model = entry.model.empty() ? segmentation.model : entry.model;
+  }
+  result->dynamic_setup = setup.description;
+}
+
+std::vector<PreparedEntry> Prepare(const BenchmarkOptions& options) {
+  if (options.runs < 1) {
+    throw Error("--runs = " + std::to_string(options.runs) + " must be at least 1");
+  }
+  CheckBenchmarkEntries(options.entries);
+  std::vector<PreparedEntry> prepared;
+  for (const BenchmarkEntry& entry : options.entries) {
+    PreparedEntry item;
+    item.result.entry = entry;
+    item.result.runs_requested = entry.runs.value_or(options.runs);
+    try {
+      ResolveSegmenter(entry, &item.result);
+      item.groundtruth = ReadTumTrajectory((fs::path(entry.dataset) / "groundtruth.txt").string());
+    } catch (const std::exception& e) {
+      // The segmenter's own library (OpenCV DNN) may throw its own exceptions.
+      throw Error(entry.origin + ": " + e.what());
+    }
+    const fs::path first_run = fs::path(options.out_dir) / entry.name / "run_1";
+    item.result.run_command = FormatRunCommand(ToRunOptions(entry, first_run.string()));
+    prepared.push_back(std::move(item));
+  }
+  return prepared;
+}
+
+// frames_skipped from the run's stats.json, where the run reports it (realtime input).
+std::optional<std::size_t> ReadFramesSkipped(const fs::path& stats_path) {
+  std::ifstream in(stats_path);
+  const nlohmann::json stats = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  const auto skipped = stats.is_object() ? stats.find("frames_skipped") : stats.end();
+  if (skipped == stats.end() || !skipped->is_number_unsigned()) return std::nullopt;
+  return skipped->get<std::size_t>();
+}
+
+// ATE and RPE of the run's trajectory; eval.json records them, or why they are missing.
+// `sequence_frames`: the frames the run was given, what ATE coverage counts against.
+void Evaluate(const Trajectory& groundtruth, const std::string& trajectory_path,
+              std::size_t sequence_frames, const fs::path& eval_path, BenchmarkRun* run) {
+  std::optional<AteResult> ate;
+  std::optional<RpeResult> rpe;
+  try {
+    const Trajectory estimate = ReadTumTrajectory(trajectory_path, /*allow_empty=*/true);
+    try {
+      AteOptions ate_options;
+      ate_options.sequence_frames = sequence_frames;
+      ate = ComputeAte(groundtruth, estimate, ate_options);
+    } catch (const Error& e) {
+      run->eval_note = std::string("ATE n/a: ") + e.what();
+    }
+    try {
+      rpe = ComputeRpe(groundtruth, estimate, RpeOptions{});
+    } catch (const Error& e) {
+      run->eval_note += std::string(run->eval_note.empty() ? "" : "; ") + "RPE n/a: " + e.what();
+    }
+  } catch (const Error& e) {
+    run->eval_note = e.what();
+  }
+  if (ate) {
+    run->ate_rmse = ate->errors.rmse;
+    run->ate_coverage = ate->coverage;
+  }
+  if (rpe) {
+    run->rpe_trans_rmse = rpe->trans_rmse;
+    run->rpe_rot_rmse_deg = rpe->rot_rmse_deg;
+  }
+  nlohmann::json json = EvalReportJson(ate.value_or(AteResult{}), rpe.value_or(RpeResult{}));
+  if (!ate) json["ate"] = nullptr;
+  if (!rpe) json["rpe"] = nullptr;
+  if (!run->eval_note.empty()) json["note"] = run->eval_note;
+  std::ofstream out(eval_path);
+  out << json.dump(2) << "\n";
+  if (!out) throw Error(eval_path.string() + ": cannot write");
+}
+
+BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path& run_dir,
+                        const BenchmarkProgress& progress, const std::atomic<bool>* stop) {
+  BenchmarkRun run;
+  run.index = index;
+  run.out_dir = run_dir.string();
+  const RunOptions options = ToRunOptions(prepared.result.entry, run.out_dir);
+  const auto started = std::chrono::steady_clock::now();
+  const auto seconds_since_start = [&started] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
+  RunSummary summary;
+  try {
+    summary = RunSequence(options, progress.frame_done, stop);
+  } catch (const std::exception& e) {
+    run.status = RunStatus::kFailed;
+    run.error = e.what();
+    run.wall_s = seconds_since_start();
+    return run;
+  }
+  run.wall_s = seconds_since_start();
+  const SystemStats& stats = summary.stats;
+  run.frames = stats.frames;
+  run.tracked = stats.tracked;
+  // Over the frames the camera delivered: frames skipped in realtime mode count as not tracked.
+  const std::size_t delivered = std::max(summary.sequence_frames, stats.frames);
+  run.tracked_share = delivered > 0 ? static_cast<double>(stats.tracked) / delivered : 0.0;
+  run.frames_lost = stats.frames_lost;
+  run.fps = run.wall_s > 0 ? delivered / run.wall_s : 0.0;
+  run.vocabulary_load_ms = stats.vocabulary_load_ms;
+  const auto total = stats.stages.find("total");
+  if (total != stats.stages.end()) {
+    run.track_median_ms = total->second.median_ms;
+    run.track_p95_ms = total->second.p95_ms;
+  }
+  run.frames_skipped = ReadFramesSkipped(run_dir / "stats.json");
+  if (summary.interrupted) {
+    run.status = RunStatus::kInterrupted;
+    run.eval_note = "interrupted: not evaluated";
+    return run;
+  }
+  Evaluate(prepared.groundtruth, summary.camera_trajectory_path, summary.sequence_frames,
+           run_dir / "eval.json", &run);
+  return run;
+}
+
+std::string ReadFirstLine(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+}  // namespace
+
+std::size_t BenchmarkReport::FailedRuns() const {
+  std::size_t failed = 0;
+  for (const BenchmarkEntryResult& entry : entries) {
+    for (const BenchmarkRun& run : entry.runs) failed += run.status == RunStatus::kFailed;
+  }
+  return failed;
+}
+
+BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
+  std::vector<double> ate, rpe_trans, rpe_rot, tracked, lost, wall, fps, median, p95, skipped;
+  BenchmarkAggregate aggregate;
+  aggregate.runs = runs.size();
+  bool all_report_skipped = true;
+  for (const BenchmarkRun& run : runs) {
+    if (run.status != RunStatus::kOk) continue;
+    ++aggregate.finished;
+    if (run.ate_rmse) ate.push_back(*run.ate_rmse);
+    if (run.rpe_trans_rmse) rpe_trans.push_back(*run.rpe_trans_rmse);
+    if (run.rpe_rot_rmse_deg) rpe_rot.push_back(*run.rpe_rot_rmse_deg);
+    tracked.push_back(run.tracked_share);
+    lost.push_back(static_cast<double>(run.frames_lost));
+    wall.push_back(run.wall_s);
+    fps.push_back(run.fps);
+    median.push_back(run.track_median_ms);
+    p95.push_back(run.track_p95_ms);
+    if (run.frames_skipped) {
+      skipped.push_back(static_cast<double>(*run.frames_skipped));
+    } else {
+      all_report_skipped = false;
+    }
+  }
+  aggregate.evaluated = ate.size();
+  aggregate.ate_rmse = ComputeErrorStatistics(ate);
+  aggregate.rpe_trans_rmse = ComputeErrorStatistics(rpe_trans);
+  aggregate.rpe_rot_rmse_deg = ComputeErrorStatistics(rpe_rot);
+  aggregate.tracked_share = ComputeErrorStatistics(tracked);
+  aggregate.frames_lost = ComputeErrorStatistics(lost);
+  aggregate.wall_s = ComputeErrorStatistics(wall);
+  aggregate.fps = ComputeErrorStatistics(fps);
+  aggregate.track_median_ms = ComputeErrorStatistics(median);
+  aggregate.track_p95_ms = ComputeErrorStatistics(p95);
+  if (aggregate.finished > 0 && all_report_skipped) {
+    aggregate.frames_skipped = ComputeErrorStatistics(skipped);
+  }
+  return aggregate;
+}
+
+MachineInfo DescribeMachine() {
+  MachineInfo machine;
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+    machine.cores = static_cast<unsigned>(CPU_COUNT(&set));
+  } else {
+    machine.cores = std::thread::hardware_concurrency();
+  }
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const std::size_t colon = line.find(':');
+    if (colon != std::string::npos)
+      machine.cpu = line.substr(line.find_first_not_of(' ', colon + 1));
+    break;
+  }
+  std::istringstream loadavg(ReadFirstLine("/proc/loadavg"));
+  std::string one, five, fifteen;
+  if (loadavg >> one >> five >> fifteen) machine.load_average = one + " " + five + " " + fifteen;
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char date[64];
+  std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M:%S UTC", &utc);
+  machine.date = date;
+  std::error_code error;
+  machine.working_directory = fs::current_path(error).string();
+  return machine;
+}
+
+BenchmarkReport RunBenchmark(const BenchmarkOptions& options, const BenchmarkProgress& progress,
+                             const std::atomic<bool>* stop) {
+  std::vector<PreparedEntry> prepared = Prepare(options);
+  BenchmarkReport report;
+  report.command = options.command;
+  report.machine = DescribeMachine();
+  for (const PreparedEntry& item : prepared) report.entries.push_back(item.result);
+  WriteBenchmarkReport(report, options.out_dir);
+
+  for (std::size_t e = 0; e < prepared.size() && !report.interrupted; ++e) {
+    BenchmarkEntryResult& result = report.entries[e];
+    for (int k = 1; k <= result.runs_requested; ++k) {
+      if (stop && stop->load()) {
+        report.interrupted = true;
+        break;
+      }
+      const fs::path run_dir =
+          fs::path(options.out_dir) / result.entry.name / ("run_" + std::to_string(k));
+      // The folder is this run's alone: files of an earlier benchmark must not mix in.
+      std::error_code error;
+      fs::remove_all(run_dir, error);
+      if (progress.run_started) progress.run_started(result, k);
+      result.runs.push_back(ExecuteRun(prepared[e], k, run_dir, progress, stop));
+      result.aggregate = AggregateRuns(result.runs);
+      report.interrupted = result.runs.back().status == RunStatus::kInterrupted;
+      WriteBenchmarkReport(report, options.out_dir);
+      if (progress.run_finished) progress.run_finished(result, result.runs.back());
+      if (report.interrupted) break;
+    }
+  }
+  WriteBenchmarkReport(report, options.out_dir);
+  return report;
+}
+
+}  // namespace drvslam

@@ -1,0 +1,343 @@
+#include "drvslam/tools/runner/sequence_runner.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+
+#include "drvslam/core/error.h"
+#include "drvslam/core/settings.h"
+#include "drvslam/core/settings_file.h"
+#include "drvslam/dense/dense_export.h"
+#include "drvslam/dense/dense_stats_json.h"
+#include "drvslam/dynamic/dynamic_stats_json.h"
+#include "drvslam/io/frame_rejections.h"
+#include "drvslam/io/realtime_feeder.h"
+#include "drvslam/io/tum_dataset.h"
+#include "drvslam/system_options.h"
+#include "drvslam/tracking/tracker_options.h"
+
+namespace drvslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ResolvedSettings {
+  Settings settings;
+  TrackerOptions tracker;
+  LocalMappingOptions mapping;
+  SegmentationOptions segmentation;
+  bool segmentation_backend_set = false;
+  DynamicOptions dynamic;
+  RelocalizationOptions relocalization;
+  DenseMapOptions dense;
+  LoopClosingOptions loop;
+  std::string source;
+};
+
+ResolvedSettings ResolveSettings(const RunOptions& options) {
+  std::string path = options.config;
+  if (path.empty()) {
+    const fs::path candidate = fs::path(options.dataset) / "settings.yaml";
+    if (fs::exists(candidate)) path = candidate.string();
+  }
+  ResolvedSettings resolved;
+  if (path.empty()) {
+    resolved.source = "defaults (TUM fr3)";
+    return resolved;
+  }
+  SettingsFile file(path);
+  resolved.settings = LoadSettings(file);
+  resolved.tracker = LoadTrackerOptions(file);
+  resolved.mapping = LoadLocalMappingOptions(file);
+  resolved.segmentation = LoadSegmentationOptions(file);
+  resolved.segmentation_backend_set = file.Has("Segmentation.backend");
+  resolved.dynamic = LoadDynamicOptions(file);
+  resolved.relocalization = LoadRelocalizationOptions(file);
+  resolved.dense = LoadDenseMapOptions(file);
+  resolved.loop = LoadLoopClosingOptions(file);
+  file.LogUnreadKeys();
+  resolved.source = path;
+  return resolved;
+}
+
+using Clock = std::chrono::steady_clock;
+
+// `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
+void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
+                  RunSummary* summary) {
+  // Local mapping finishes its queue first: the trajectories then include its corrections.
+  system.Shutdown();
+  summary->wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  // Assembled with the final keyframe poses; stats then count the exported points.
+  if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string());
+  summary->stats = system.Stats();
+  summary->fps = summary->wall_s > 0.0 ? summary->stats.frames / summary->wall_s : 0.0;
+  summary->camera_trajectory_path = (out_dir / "CameraTrajectory.txt").string();
+  WriteTumTrajectory(summary->camera_trajectory_path, system.CameraTrajectory(),
+                     "drvslam camera trajectory (T_wc), every tracked frame");
+  WriteTumTrajectory((out_dir / "KeyFrameTrajectory.txt").string(), system.KeyFrameTrajectory(),
+                     "drvslam keyframe trajectory (T_wc)");
+  WriteStatsJson((out_dir / "stats.json").string(), *summary);
+}
+
+void FileRejections(const FrameRejections& rejections, RunSummary* summary) {
+  summary->frames_rejected = rejections.Count();
+  summary->frames_rejected_by_fault = rejections.CountsByFault();
+  summary->frames_rejected_examples = rejections.Examples();
+}
+
+// After a failure: keeps what was tracked so far. A failure while writing must not hide the one
+// that stopped the run, so it is only logged.
+void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::time_point started,
+                              RunSummary* summary) {
+  try {
+    WriteOutputs(system, out_dir, started, summary);
+  } catch (const std::exception& error) {
+    spdlog::error("could not write the outputs after the failure: {}", error.what());
+  } catch (...) {
+    spdlog::error("could not write the outputs after the failure");
+  }
+}
+
+}  // namespace
+
+RunSummary RunSequence(const RunOptions& options,
+                       const std::function<void(std::size_t, std::size_t)>& progress,
+                       const std::atomic<bool>* stop) {
+  const ResolvedSettings resolved = ResolveSettings(options);
+  TumDatasetOptions dataset_options;
+  dataset_options.depth_map_factor = resolved.settings.depth.depth_map_factor;
+  dataset_options.expected_width = resolved.settings.camera.width;
+  dataset_options.expected_height = resolved.settings.camera.height;
+  const TumDataset dataset(options.dataset, dataset_options);
+
+  const fs::path out_dir = options.out_dir.empty() ? fs::path(".") : fs::path(options.out_dir);
+  std::error_code error;
+  fs::create_directories(out_dir, error);
+  if (error || !fs::is_directory(out_dir)) {
+    throw Error(out_dir.string() + ": cannot create output folder");
+  }
+
+  SystemOptions system_options;
+  system_options.sequential = options.sequential;
+  system_options.mapping = resolved.mapping;
+  system_options.relocalization = resolved.relocalization;
+  system_options.dense = resolved.dense;
+  system_options.loop = resolved.loop;
+  if (!options.loop.empty()) {
+    if (options.loop != "on" && options.loop != "off") {
+      throw Error("--loop = " + options.loop + " must be on or off");
+    }
+    system_options.loop.enabled = options.loop == "on";
+  }
+  if (!options.dense.empty()) {
+    if (options.dense != "on" && options.dense != "off") {
+      throw Error("--dense = " + options.dense + " must be on or off");
+    }
+    system_options.dense->enabled = options.dense == "on";
+  }
+  const DynamicRunSetup dynamic =
+      ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation,
+                        resolved.segmentation_backend_set, resolved.dynamic);
+  system_options.dynamic = dynamic.config;
+  const std::unique_ptr<DatasetMotionTruth> motion_truth =
+      dynamic.config ? DatasetMotionTruth::Open(options.dataset, dynamic.backend) : nullptr;
+  System system(resolved.settings, resolved.tracker, system_options);
+  RunSummary summary;
+  summary.settings_source = resolved.source;
+  summary.dynamic_setup = dynamic.description;
+  summary.segmenter = dynamic.segmenter_label;
+  summary.oracle_masks = dynamic.oracle;
+  // --realtime: frames arrive at their timestamps from a feeder thread, as from a sensor, and
+  // a frame that arrives while tracking is busy replaces the one waiting (never when
+  // sequential).
+  const bool paced = options.dynamic.realtime && !options.sequential;
+
+  std::size_t total = dataset.Size();
+  if (options.max_frames > 0 && options.max_frames < total) total = options.max_frames;
+  summary.sequence_frames = total;
+  const auto track = [&](const RgbdFrame& frame) {
+    system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
+    if (motion_truth && system.Dynamic()) {
+      motion_truth->Add(system.Dynamic()->LastReport(), frame.bgr.size());
+      summary.motion_states = motion_truth->Scores();
+    }
+    if (progress) progress(frame.index + 1, total);
+  };
+  FrameRejections rejections(kMaxConsecutiveRejectedFrames);
+  for (const FrameError& dropped : dataset.DroppedEntries()) rejections.RejectListEntry(dropped);
+  std::optional<RealtimeFeeder> feeder;
+  // Stops the feeder and files what it skipped (also when the run failed).
+  const auto finish_feeder = [&] {
+    if (!feeder) return;
+    feeder->Stop();
+    summary.frames_skipped = feeder->Skipped();
+    summary.frames_skipped_loading = feeder->SkippedWhileLoading();
+    summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
+    feeder.reset();
+  };
+  // The frame being read or tracked, for the message of an unexpected failure.
+  std::size_t current = 0;
+  const Clock::time_point started = Clock::now();
+  try {
+    if (paced) {
+      feeder.emplace(dataset, total, 1.0, &rejections);
+      while (std::optional<RgbdFrame> frame = feeder->Next()) {
+        if (stop && stop->load()) {
+          summary.interrupted = true;
+          break;
+        }
+        current = frame->index;
+        track(*frame);
+      }
+    } else {
+      for (std::size_t i = 0; i < total; ++i) {
+        if (stop && stop->load()) {
+          summary.interrupted = true;
+          break;
+        }
+        current = i;
+        std::optional<RgbdFrame> frame;
+        try {
+          frame = dataset.Read(i);
+          rejections.Accept();
+        } catch (const FrameError& error) {
+          rejections.Reject(i, error);  // throws when too many in a row
+          continue;
+        }
+        track(*frame);
+      }
+    }
+  } catch (const Error&) {
+    // Bad input: keep what was tracked so far, then report the failure.
+    finish_feeder();
+    FileRejections(rejections, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    throw;
+  } catch (const std::exception& error) {
+    // Not bad input (cv::Exception, std::bad_alloc, a solver failure): the trajectory is kept
+    // all the same, and the failure goes on to the caller (the CLI exits non-zero).
+    spdlog::error("run failed at frame {} of {} ({}); writing the outputs computed so far to {}",
+                  current, total, error.what(), out_dir.string());
+    finish_feeder();
+    FileRejections(rejections, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    throw;
+  } catch (...) {
+    spdlog::error(
+        "run failed at frame {} of {} (unknown exception); writing the outputs "
+        "computed so far to {}",
+        current, total, out_dir.string());
+    finish_feeder();
+    FileRejections(rejections, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    throw;
+  }
+  finish_feeder();
+  FileRejections(rejections, &summary);
+  WriteOutputs(system, out_dir, started, &summary);
+  if (rejections.Accepted() == 0 && rejections.Count() > 0 && !summary.interrupted) {
+    throw Error(options.dataset + ": none of the " + std::to_string(total) +
+                " frames could be used (" + std::to_string(rejections.Count()) +
+                " rejected; see stats.json frames_rejected_examples)");
+  }
+  return summary;
+}
+
+void WriteStatsJson(const std::string& path, const RunSummary& summary) {
+  const SystemStats& s = summary.stats;
+  nlohmann::json json;
+  json["frames"] = s.frames;
+  json["tracked"] = s.tracked;
+  json["tracked_ratio"] = s.frames > 0 ? static_cast<double>(s.tracked) / s.frames : 0.0;
+  json["keyframes"] = s.keyframes;
+  json["map_points"] = s.map_points;
+  json["reference_fallbacks"] = s.reference_fallbacks;
+  json["frames_lost"] = s.frames_lost;
+  json["frames_skipped"] = summary.frames_skipped;
+  json["frames_skipped_loading"] = summary.frames_skipped_loading;
+  json["frames_rejected"] = summary.frames_rejected;
+  json["frames_rejected_by_fault"] = nlohmann::json::object();
+  for (const auto& [fault, count] : summary.frames_rejected_by_fault) {
+    json["frames_rejected_by_fault"][fault] = count;
+  }
+  nlohmann::json rejected = nlohmann::json::array();
+  for (const RejectedFrame& frame : summary.frames_rejected_examples) {
+    rejected.push_back(
+        {{"frame", frame.index == RejectedFrame::kListEntry ? nlohmann::json(nullptr)
+                                                            : nlohmann::json(frame.index)},
+         {"fault", FrameFaultName(frame.fault)},
+         {"file", frame.path},
+         {"message", frame.message}});
+  }
+  json["frames_rejected_examples"] = rejected;
+  json["max_arrival_lag_ms"] = summary.max_arrival_lag_ms;
+  json["relocalization"] = {{"relocalizations", s.relocalizations},
+                            {"attempts", s.relocalization_attempts},
+                            {"vocabulary_load_ms", s.vocabulary_load_ms}};
+  json["fps"] = summary.fps;
+  json["wall_s"] = summary.wall_s;
+  json["tracking_fps"] = s.tracking_fps;
+  json["interrupted"] = summary.interrupted;
+  json["settings"] = summary.settings_source;
+  json["dynamic_setup"] = summary.dynamic_setup;
+  json["segmenter"] = {{"label", summary.segmenter}, {"oracle", summary.oracle_masks}};
+  if (s.dynamic) {
+    json["dynamic"] = DynamicStatsJson(*s.dynamic);
+    json["segmentation"] = DynamicSegmentationJson(*s.dynamic);
+  }
+  if (summary.motion_states) {
+    json["dynamic"]["motion_states"] = MotionStateScoresJson(*summary.motion_states);
+  }
+  if (s.dense) json["dense"] = DenseStatsJson(*s.dense);
+  if (s.loop) {
+    const LoopClosingStats& l = *s.loop;
+    nlohmann::json loops = nlohmann::json::array();
+    for (const LoopEvent& event : l.loops) {
+      loops.push_back({{"keyframe", event.keyframe_id},
+                       {"loop_keyframe", event.loop_keyframe_id},
+                       {"timestamp", event.timestamp},
+                       {"matches", event.matches},
+                       {"correction_m", event.correction_m},
+                       {"correction_deg", event.correction_deg}});
+    }
+    json["loop"] = {{"keyframes_processed", l.keyframes_processed},
+                    {"detections", l.detections},
+                    {"rejected", l.rejected},
+                    {"corrections", l.corrections},
+                    {"global_bas", l.global_bas},
+                    {"global_bas_interrupted", l.global_bas_interrupted},
+                    {"detection_ms", l.detection_ms},
+                    {"correction_ms", l.correction_ms},
+                    {"global_ba_ms", l.global_ba_ms},
+                    {"loops", loops}};
+  }
+  const LocalMappingStats& m = s.mapping;
+  json["mapping"] = {{"keyframes_processed", m.keyframes_processed},
+                     {"points_from_tracking", m.points_from_tracking},
+                     {"points_triangulated", m.points_triangulated},
+                     {"points_culled", m.points_culled},
+                     {"points_fused", m.points_fused},
+                     {"bundle_adjustments", m.bundle_adjustments},
+                     {"bundle_adjustments_interrupted", m.bundle_adjustments_interrupted},
+                     {"observations_removed", m.observations_removed},
+                     {"keyframes_culled", m.keyframes_culled}};
+  for (const auto& [stage, timing] : s.stages) {
+    json["stages"][stage] = {{"median_ms", timing.median_ms},
+                             {"p95_ms", timing.p95_ms},
+                             {"mean_ms", timing.mean_ms},
+                             {"max_ms", timing.max_ms},
+                             {"count", timing.count}};
+  }
+  std::ofstream out(path);
+  if (!out) throw Error(path + ": cannot open for writing");
+  out << json.dump(2) << "\n";
+  if (!out) throw Error(path + ": write failed");
+}
+
+}  // namespace drvslam

@@ -1,0 +1,103 @@
+// RunSequence: drvslam's main job on a TUM-layout folder: settings resolution, the frame loop
+// through System, and the outputs (CameraTrajectory.txt, KeyFrameTrajectory.txt, stats.json).
+// Whatever was tracked is written even when a frame fails to load or the run is interrupted.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "drvslam/io/frame_rejections.h"
+#include "drvslam/system.h"
+#include "drvslam/system_stats.h"
+#include "drvslam/tools/runner/dynamic_run_setup.h"
+
+namespace drvslam {
+
+struct RunOptions {
+  std::string dataset;  // TUM-layout folder
+  std::string config;   // settings file; empty: DATASET/settings.yaml if present, else TUM fr3
+  std::string out_dir;  // created when missing
+  bool sequential = false;
+  std::size_t max_frames = 0;  // 0 = all
+  // Segmentation and dynamic-object handling (--segmenter, --model, --dynamic, --realtime,
+  // --debug-frames). --realtime also feeds frames at their timestamps from a feeder thread
+  // through a one-frame slot, skipping (and counting) frames tracking had no time for (not in
+  // sequential mode).
+  DynamicRunChoice dynamic;
+  // --dense on|off: the dense mapping thread (empty: DenseMap.enabled, default on); writes
+  // dense_map.ply and dense_map.pcd.
+  std::string dense;
+  // --loop on|off: the loop closing thread (empty: LoopClosing.enabled, default on).
+  std::string loop;
+};
+
+// A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
+// entry whose timestamp repeats or goes back) is skipped with one warning and counted; more than
+// this many in a row stop the run with an Error (the sequence is unreadable, not hiccuping).
+inline constexpr std::size_t kMaxConsecutiveRejectedFrames = 30;
+
+struct RunSummary {
+  SystemStats stats;
+  std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
+  bool interrupted = false;
+  // --realtime: frames that arrived while tracking was busy and were replaced by a newer one
+  // before tracking took them (not tracked, so absent from CameraTrajectory.txt); of them,
+  // frames_skipped_loading were not even loaded (loading had fallen behind).
+  std::size_t frames_skipped = 0;
+  std::size_t frames_skipped_loading = 0;
+  // --realtime: the most a frame arrived after its timestamp because loading it fell behind.
+  double max_arrival_lag_ms = 0.0;
+  // Frames (and list entries) skipped because they could not be used, per FrameFaultName, and
+  // the first FrameRejections::kKeptExamples of them.
+  std::size_t frames_rejected = 0;
+  std::map<std::string, std::size_t> frames_rejected_by_fault;
+  std::vector<RejectedFrame> frames_rejected_examples;
+  std::string camera_trajectory_path;
+  std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
+  // Where the masks came from (DynamicRunSetup::segmenter_label), and whether they were the
+  // dataset's ground truth: an oracle, which every shown result must say.
+  std::string segmenter;
+  bool oracle_masks = false;
+  // The frames the run was to process: the dataset's (associated colour-depth pairs), or
+  // --max-frames when fewer; what ATE coverage counts against (AteOptions::sequence_frames).
+  std::size_t sequence_frames = 0;
+  // Wall-clock time of the whole run, from the start of the frame loop (reading images included)
+  // to the end of System::Shutdown (local mapping, loop closing and dense mapping drained);
+  // writing the outputs is not included. fps = stats.frames / wall_s, the run's throughput
+  // (stats.tracking_fps counts the time inside TrackRGBD only).
+  double wall_s = 0.0;
+  double fps = 0.0;
+  // Motion states scored against the dataset's ground truth (synthetic sequences only).
+  std::optional<MotionStateScores> motion_states;
+};
+
+// progress(done, total) is called after every frame; `stop` (may be null) ends the loop early
+// when it becomes true. Frames that cannot be used are skipped (kMaxConsecutiveRejectedFrames).
+// Throws Error for bad input, and lets any other exception through, after writing what was
+// computed in both cases; throws Error after writing when no frame at all could be used.
+RunSummary RunSequence(const RunOptions& options,
+                       const std::function<void(std::size_t, std::size_t)>& progress = nullptr,
+                       const std::atomic<bool>* stop = nullptr);
+
+// Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
+// fps (wall-clock throughput of the whole run: frames / wall_s, see RunSummary), wall_s (the
+// run's wall time in seconds, frame loop and shutdown drain, writing the outputs excluded),
+// tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost,
+// frames_skipped, frames_skipped_loading, max_arrival_lag_ms, frames_rejected,
+// frames_rejected_by_fault.{fault: count}, frames_rejected_examples[{frame (null for a list
+// entry), fault, file, message}], segmenter.{label, oracle},
+// relocalization.{relocalizations,attempts,vocabulary_load_ms},
+// stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
+// LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
+// motion_states} and segmentation.{SegmentationStatsJson}, and with dense mapping
+// dense.{DenseStatsJson}, and with loop closing loop.{keyframes_processed, detections,
+// rejected, corrections, global_bas, global_bas_interrupted, detection_ms, correction_ms,
+// global_ba_ms, loops[{keyframe, loop_keyframe, timestamp, matches, correction_m,
+// correction_deg}]}).
+void WriteStatsJson(const std::string& path, const RunSummary& summary);
+
+}  // namespace drvslam
