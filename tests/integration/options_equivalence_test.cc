@@ -69,10 +69,15 @@ std::vector<std::string> Trials(const OptionInfo& option) {
   return values;
 }
 
+// Loads `file` with `old_loader` and `new_loader`: "" when both give equal fields
+// (`differences` lists the keys that differ), "rejected" when both reject it with an error naming
+// the file, else what disagreed.
 template <typename Options>
 std::function<std::string(const SettingsFile&)> Compare(
-    std::function<Options(const SettingsFile&)> old_loader, const OptionTable<Options>& table) {
-  return [old_loader, &table](const SettingsFile& file) -> std::string {
+    std::function<Options(const SettingsFile&)> old_loader,
+    std::function<Options(const SettingsFile&)> new_loader,
+    std::function<std::vector<std::string>(const Options&, const Options&)> differences) {
+  return [=](const SettingsFile& file) -> std::string {
     Options old_result;
     Options new_result;
     std::string old_error;
@@ -83,7 +88,7 @@ std::function<std::string(const SettingsFile&)> Compare(
       old_error = e.what();
     }
     try {
-      new_result = table.Load(file);
+      new_result = new_loader(file);
     } catch (const Error& e) {
       new_error = e.what();
     }
@@ -94,22 +99,47 @@ std::function<std::string(const SettingsFile&)> Compare(
       if (new_error.rfind(file.Path() + ": ", 0) != 0) return "new error lacks path: " + new_error;
       return "rejected";
     }
-    std::string differences;
-    for (const std::string& key : table.Differences(old_result, new_result)) {
-      differences += key + " ";
-    }
-    return differences.empty() ? "" : "fields differ: " + differences;
+    std::string differing;
+    for (const std::string& key : differences(old_result, new_result)) differing += key + " ";
+    return differing.empty() ? "" : "fields differ: " + differing;
   };
+}
+
+template <typename Options>
+std::function<std::string(const SettingsFile&)> Compare(
+    std::function<Options(const SettingsFile&)> old_loader, const OptionTable<Options>& table) {
+  return Compare<Options>(
+      old_loader, [&table](const SettingsFile& file) { return table.Load(file); },
+      [&table](const Options& a, const Options& b) { return table.Differences(a, b); });
+}
+
+// The old LoadSettings read Camera.*, ThDepth, DepthMapFactor and ORBextractor.* and checked
+// them together: the three tables together must accept and reject the same files.
+std::function<std::string(const SettingsFile&)> CompareSettings() {
+  return Compare<Settings>(
+      [](const SettingsFile& file) { return LoadSettings(file); },
+      [](const SettingsFile& file) {
+        Settings settings;
+        settings.camera = CameraOptionTable().Load(file);
+        settings.depth = DepthOptionTable().Load(file);
+        settings.orb = OrbExtractorOptionTable().Load(file);
+        return settings;
+      },
+      [](const Settings& a, const Settings& b) {
+        std::vector<std::string> keys = CameraOptionTable().Differences(a.camera, b.camera);
+        for (const std::string& key : DepthOptionTable().Differences(a.depth, b.depth)) {
+          keys.push_back(key);
+        }
+        for (const std::string& key : OrbExtractorOptionTable().Differences(a.orb, b.orb)) {
+          keys.push_back(key);
+        }
+        return keys;
+      });
 }
 
 std::vector<std::function<std::string(const SettingsFile&)>> AllComparisons() {
   return {
-      Compare<CameraOptions>([](const SettingsFile& f) { return LoadSettings(f).camera; },
-                             CameraOptionTable()),
-      Compare<DepthOptions>([](const SettingsFile& f) { return LoadSettings(f).depth; },
-                            DepthOptionTable()),
-      Compare<OrbExtractorOptions>([](const SettingsFile& f) { return LoadSettings(f).orb; },
-                                   OrbExtractorOptionTable()),
+      CompareSettings(),
       Compare<TrackerOptions>(LoadTrackerOptions, TrackerOptionTable()),
       Compare<LocalMappingOptions>(LoadLocalMappingOptions, LocalMappingOptionTable()),
       Compare<RelocalizationOptions>(LoadRelocalizationOptions, RelocalizationOptionTable()),
