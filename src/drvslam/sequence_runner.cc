@@ -15,6 +15,7 @@
 #include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/io/realtime_feeder.h"
 #include "drvslam/io/tum_dataset.h"
+#include "drvslam/settings_registry.h"
 
 namespace drvslam {
 namespace {
@@ -55,7 +56,7 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   resolved.relocalization = LoadRelocalizationOptions(file);
   resolved.dense = LoadDenseMapOptions(file);
   resolved.loop = LoadLoopClosingOptions(file);
-  file.LogUnreadKeys();
+  CheckSettingsKeys(file, options.strict_settings);
   resolved.source = path;
   return resolved;
 }
