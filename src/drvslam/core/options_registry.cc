@@ -227,7 +227,7 @@ std::string SettingsMarkdown(const std::vector<OptionSection>& sections) {
       "# Configuration\n\n"
       "<!-- Generated from the options registry by `drvslam config --markdown "
       "docs/configuration.md`;\n"
-      "     the options_docs test fails when this file differs from what the code declares. "
+      "     the options_registry_test fails when this file differs from what the code declares. "
       "-->\n\n"
       "drvslam reads one settings file (`drvslam run --config FILE`, else the dataset's\n"
       "`settings.yaml`, else the defaults below: TUM fr3 intrinsics). It is OpenCV FileStorage\n"
