@@ -125,6 +125,9 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
                     "that arrives while tracking is busy replaces the waiting one (counted as "
                     "skipped), and tracking uses the newest masks, carried to the frame, instead "
                     "of waiting (ignored with --sequential)");
+  command->add_flag("--strict-settings", options->strict_settings,
+                    "unknown keys in drvslam's settings sections are errors (default: warnings "
+                    "naming the nearest known key)");
   command->add_option("--debug-frames", dynamic.debug_dir,
                       "write one picture per frame there: kept features green, removed red, "
                       "moving masks red, static masks green");

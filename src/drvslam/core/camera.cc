@@ -5,26 +5,10 @@
 #include <sstream>
 
 #include "drvslam/core/error.h"
-#include "drvslam/core/option_check.h"
+#include "drvslam/core/settings.h"
 
 namespace drvslam {
-void CameraOptions::Check() const {
-  RequireOption(std::isfinite(fx) && fx > 0, "Camera.fx", fx, "must be a positive number");
-  RequireOption(std::isfinite(fy) && fy > 0, "Camera.fy", fy, "must be a positive number");
-  RequireOption(std::isfinite(cx), "Camera.cx", cx, "must be a finite number");
-  RequireOption(std::isfinite(cy), "Camera.cy", cy, "must be a finite number");
-  for (const auto& [key, value] : {std::pair<const char*, double>{"Camera.k1", k1},
-                                   {"Camera.k2", k2},
-                                   {"Camera.p1", p1},
-                                   {"Camera.p2", p2},
-                                   {"Camera.k3", k3}}) {
-    RequireOption(std::isfinite(value), key, value, "must be a finite number");
-  }
-  RequireOption(width > 0 && width <= 16384, "Camera.width", width, "must be in 1..16384");
-  RequireOption(height > 0 && height <= 16384, "Camera.height", height, "must be in 1..16384");
-  RequireOption(std::isfinite(fps) && fps > 0, "Camera.fps", fps, "must be a positive number");
-  RequireOption(std::isfinite(bf) && bf > 0, "Camera.bf", bf, "must be a positive number");
-}
+void CameraOptions::Check() const { CameraOptionTable().Check(*this); }
 
 PinholeCamera::PinholeCamera(const CameraOptions& options) : options_(options) { options_.Check(); }
 

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "drvslam/core/camera.h"
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -36,6 +38,13 @@ struct Settings {
   DepthOptions depth;
   OrbExtractorOptions orb;
 };
+
+// The keys of Camera.*, the top-level ThDepth and DepthMapFactor, and ORBextractor.*.
+const OptionTable<CameraOptions>& CameraOptionTable();
+const OptionTable<DepthOptions>& DepthOptionTable();
+const OptionTable<OrbExtractorOptions>& OrbExtractorOptionTable();
+// Those three sections, as the registry lists them.
+std::vector<OptionSection> DescribeSettings();
 
 // Reads Camera.*, ThDepth, DepthMapFactor and ORBextractor.* (absent keys keep their defaults)
 // and checks them. Errors name the file, the key and the value.

@@ -100,6 +100,12 @@ std::vector<std::string> SettingsFile::GetStringList(
   return values;
 }
 
+std::vector<std::string> SettingsFile::Keys() const {
+  std::vector<std::string> keys;
+  for (const cv::FileNode& node : storage_.root()) keys.push_back(node.name());
+  return keys;
+}
+
 std::vector<std::string> SettingsFile::UnreadKeys() const {
   std::vector<std::string> unread;
   const cv::FileNode root = storage_.root();

@@ -30,6 +30,8 @@ class SettingsFile {
   std::vector<std::string> GetStringList(const std::string& key,
                                          const std::vector<std::string>& fallback) const;
 
+  // Every top-level key of the file, in file order.
+  std::vector<std::string> Keys() const;
   // Top-level keys present in the file but never read through a getter.
   std::vector<std::string> UnreadKeys() const;
   // Logs each unread key at debug level ("ignored").

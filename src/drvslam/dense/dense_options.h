@@ -3,6 +3,7 @@
 // and frame count of the targeted enhancement of static key objects.
 #pragma once
 
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -72,6 +73,9 @@ struct DenseMapOptions {
   // Throws Error naming the DenseMap.* key of a bad value.
   void Check() const;
 };
+
+// Every DenseMap.* key: name, type, bounds and doc, bound to its field (core/option_table.h).
+const OptionTable<DenseMapOptions>& DenseMapOptionTable();
 
 // Reads DenseMap.* (defaults for absent keys) and checks them; errors name the file and key.
 DenseMapOptions LoadDenseMapOptions(const SettingsFile& file);

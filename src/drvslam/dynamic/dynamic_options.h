@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -145,6 +146,9 @@ struct DynamicOptions {
   // Throws drvslam::Error naming the first bad Dynamic.* key and its value.
   void Check() const;
 };
+
+// Every Dynamic.* key: name, type, bounds and doc, bound to its field (core/option_table.h).
+const OptionTable<DynamicOptions>& DynamicOptionTable();
 
 // Reads every Dynamic.* key (absent keys keep their defaults) and checks the result; errors
 // name the file and the key.

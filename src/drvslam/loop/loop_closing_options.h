@@ -3,6 +3,7 @@
 // by a rigid transform (depth fixes the scale).
 #pragma once
 
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -38,6 +39,9 @@ struct LoopClosingOptions {
 
   void Check() const;  // throws Error naming the bad key
 };
+
+// Every LoopClosing.* key: name, type, bounds and doc, bound to its field (core/option_table.h).
+const OptionTable<LoopClosingOptions>& LoopClosingOptionTable();
 
 // Reads LoopClosing.enabled, .minKeyFramesBetween, .minConsistency, .minBowMatches,
 // .ransacIterations, .minInliers, .ransacTolerance, .minTotalMatches,

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -26,6 +27,9 @@ struct RelocalizationOptions {
 
   void Check() const;  // throws Error naming the bad key
 };
+
+// Every Relocalization.* key: name, type, bounds and doc, bound to its field (core/option_table.h).
+const OptionTable<RelocalizationOptions>& RelocalizationOptionTable();
 
 // Reads Relocalization.enabled, .vocabulary, .minBowMatches, .ransacIterations,
 // .ransacReprojectionError, .minPnpInliers and .minInliers.

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -39,6 +40,9 @@ struct LocalMappingOptions {
 
   void Check() const;  // throws Error naming the bad key
 };
+
+// Every LocalMapping.* key: name, type, bounds and doc, bound to its field (core/option_table.h).
+const OptionTable<LocalMappingOptions>& LocalMappingOptionTable();
 
 // Reads LocalMapping.enabled, .triangulationNeighbours, .fusionNeighbours, .minFoundRatio,
 // .minPointObservations, .bundleAdjustment, .baMaxLocalKeyFrames, .baFirstPassIterations,

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -71,6 +72,9 @@ struct SegmentationOptions {
   // Throws drvslam::Error naming the first bad Segmentation.* key and its value.
   void Check() const;
 };
+
+// Every Segmentation.* key: name, type, bounds and doc, bound to its field (core/option_table.h).
+const OptionTable<SegmentationOptions>& SegmentationOptionTable();
 
 // Reads every Segmentation.* key (absent keys keep their defaults) and checks the result; errors
 // name the file and the key.

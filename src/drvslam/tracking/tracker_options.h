@@ -1,6 +1,7 @@
 // TrackerOptions: the tracking thread's settings ("Tracking.*" keys beside the ORB-SLAM2 ones).
 #pragma once
 
+#include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
 namespace drvslam {
@@ -24,6 +25,9 @@ struct TrackerOptions {
 
   void Check() const;  // throws Error naming the bad key
 };
+
+// Every Tracker.* key: name, type, bounds and doc, bound to its field (core/option_table.h).
+const OptionTable<TrackerOptions>& TrackerOptionTable();
 
 // Reads Tracking.minInitialPoints, Tracking.maxFramesBetweenKeyframes,
 // Tracking.newPointsPerKeyframe, Tracking.minInliers, Tracking.resetWhenLost and

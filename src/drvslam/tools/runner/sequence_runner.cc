@@ -18,6 +18,7 @@
 #include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/realtime_feeder.h"
 #include "drvslam/io/tum_dataset.h"
+#include "drvslam/settings_registry.h"
 #include "drvslam/system_options.h"
 #include "drvslam/tracking/tracker_options.h"
 
@@ -60,7 +61,7 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   resolved.relocalization = LoadRelocalizationOptions(file);
   resolved.dense = LoadDenseMapOptions(file);
   resolved.loop = LoadLoopClosingOptions(file);
-  file.LogUnreadKeys();
+  CheckSettingsKeys(file, options.strict_settings);
   resolved.source = path;
   return resolved;
 }

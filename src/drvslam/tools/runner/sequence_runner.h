@@ -33,6 +33,9 @@ struct RunOptions {
   std::string dense;
   // --loop on|off: the loop closing thread (empty: LoopClosing.enabled, default on).
   std::string loop;
+  // --strict-settings: an unknown key in one of drvslam's settings sections is an error, not a
+  // warning.
+  bool strict_settings = false;
 };
 
 // A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
