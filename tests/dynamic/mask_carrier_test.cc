@@ -231,7 +231,9 @@ TEST(MaskCarryingTest, MasksAreCarriedOntoWalkingPeopleWithinAnIoUBound) {
     EXPECT_GE(carried[i].mean_iou, kMeanIoUBound[i]);
     // Carrying must beat standing still once the people had time to move (measured: by 0.029,
     // 0.046 and 0.062 at lags 2..4).
-    if (carried[i].lag >= 2) EXPECT_GT(carried[i].mean_iou, unmoved[i].mean_iou + 0.015);
+    if (carried[i].lag >= 2) {
+      EXPECT_GT(carried[i].mean_iou, unmoved[i].mean_iou + 0.015);
+    }
   }
 }
 

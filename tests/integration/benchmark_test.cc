@@ -345,24 +345,27 @@ class BenchmarkEndToEndTest : public ::testing::Test {
 
 fs::path BenchmarkEndToEndTest::root_;
 
-// The 20th colour image listed in the sequence's rgb.txt.
-fs::path TwentiethImage(const fs::path& sequence) {
+// The n-th (from 1) colour image listed in the sequence's rgb.txt.
+fs::path ListedImage(const fs::path& sequence, int n) {
   std::ifstream list(sequence / "rgb.txt");
   int seen = 0;
   for (std::string line; std::getline(list, line);) {
     if (line.empty() || line[0] == '#') continue;
-    if (++seen == 20) return sequence / line.substr(line.find(' ') + 1);
+    if (++seen == n) return sequence / line.substr(line.find(' ') + 1);
   }
   return {};
 }
 
 TEST_F(BenchmarkEndToEndTest, TwoSequentialRunsAgreeAndAFailedRunIsRecordedAndReported) {
-  // A copy whose 20th image is corrupt: its run fails at that frame, the benchmark goes on.
+  // A copy whose images 20 to 50 are corrupt: a run skips a bad frame, but 31 in a row make the
+  // sequence unreadable and the run fails there; the benchmark goes on.
   const fs::path broken = root_ / "broken";
   fs::copy(root_ / "seq", broken, fs::copy_options::recursive);
-  const fs::path image = TwentiethImage(broken);
-  ASSERT_TRUE(fs::exists(image)) << image;
-  WriteText(image, "not a png");
+  for (int n = 20; n <= 50; ++n) {
+    const fs::path image = ListedImage(broken, n);
+    ASSERT_TRUE(fs::exists(image)) << image;
+    WriteText(image, "not a png");
+  }
   WriteText(root_ / "bench.json", R"({"entries": [
       {"name": "broken", "dataset": "broken", "segmenter": "gt", "mode": "sequential",
        "dense": "off", "runs": 1},
