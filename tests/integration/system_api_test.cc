@@ -17,10 +17,10 @@
 #include "drvslam/core/settings.h"
 #include "drvslam/core/settings_file.h"
 #include "drvslam/io/tum_dataset.h"
-#include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/system.h"
 #include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
+#include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
 

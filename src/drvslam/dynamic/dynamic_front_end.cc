@@ -7,9 +7,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/pixel_index.h"
 #include "drvslam/dynamic/dynamic_drawing.h"
 #include "drvslam/dynamic/feature_floor.h"
-#include "drvslam/core/pixel_index.h"
 #include "drvslam/dynamic/removal_policy.h"
 #include "drvslam/semantic/mask_lookup.h"
 #include "drvslam/semantic/mask_propagator.h"
