@@ -10,43 +10,19 @@
 #include "drvslam/core/error.h"
 #include "drvslam/synth/random.h"
 #include "drvslam/synth/room_layout.h"
+#include "raster_test_scene.h"
 
 namespace drvslam::synth {
 namespace {
 
-CameraOptions TestCamera() {
-  CameraOptions camera;
-  camera.fx = 500.0;
-  camera.fy = 500.0;
-  camera.cx = 320.25;
-  camera.cy = 240.25;
-  camera.width = 640;
-  camera.height = 480;
-  return camera;
-}
-
-// Lighting that leaves texture colours as they are (shade 1 everywhere).
-RasterOptions Unlit() {
-  RasterOptions options;
-  options.ambient = 1.0;
-  return options;
-}
+using testing::AddFacingRect;
+using testing::TestCamera;
+using testing::Unlit;
 
 std::vector<Texture> PlainTextures() {
   std::vector<Texture> textures;
   textures.emplace_back(cv::Mat(8, 8, CV_8UC3, cv::Scalar(40, 80, 120)));
   return textures;
-}
-
-// A w x h rectangle facing the camera at the camera-frame centre `c` (camera at the origin
-// looking along +z, image y down).
-void AddFacingRect(const Eigen::Vector3d& c, double w, double h, int id, int texture,
-                   TriangleList* out) {
-  SurfaceTag tag;
-  tag.texture = texture;
-  tag.instance_id = id;
-  const Eigen::Vector3d dx(0.5 * w, 0, 0), dy(0, 0.5 * h, 0);
-  AddQuad(c - dx + dy, c + dx + dy, c + dx - dy, c - dx - dy, UvRect(), tag, out);
 }
 
 int CountId(const cv::Mat& ids, int id) { return cv::countNonZero(ids == id); }

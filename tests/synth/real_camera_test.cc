@@ -14,30 +14,17 @@
 #include "drvslam/synth/shutter_renderer.h"
 #include "drvslam/synth/synth_generator.h"
 #include "drvslam/synth/synth_sequence.h"
+#include "raster_test_scene.h"
 #include "test_folder.h"
 
 namespace drvslam::synth {
 namespace {
 
+using testing::AddFacingRect;
 using testing::ReadFileBytes;
+using testing::TestCamera;
 using testing::TestFolder;
-
-CameraOptions TestCamera() {
-  CameraOptions camera;
-  camera.fx = 500.0;
-  camera.fy = 500.0;
-  camera.cx = 320.25;
-  camera.cy = 240.25;
-  camera.width = 640;
-  camera.height = 480;
-  return camera;
-}
-
-RasterOptions Unlit() {
-  RasterOptions options;
-  options.ambient = 1.0;
-  return options;
-}
+using testing::Unlit;
 
 // Texture 0 dark grey, texture 1 white.
 std::vector<Texture> TwoTextures() {
@@ -45,17 +32,6 @@ std::vector<Texture> TwoTextures() {
   textures.emplace_back(cv::Mat(8, 8, CV_8UC3, cv::Scalar(20, 20, 20)));
   textures.emplace_back(cv::Mat(8, 8, CV_8UC3, cv::Scalar(230, 230, 230)));
   return textures;
-}
-
-// A w x h rectangle facing the camera at the camera-frame centre `c` (camera at the origin
-// looking along +z, image y down).
-void AddFacingRect(const Eigen::Vector3d& c, double w, double h, int id, int texture,
-                   TriangleList* out) {
-  SurfaceTag tag;
-  tag.texture = texture;
-  tag.instance_id = id;
-  const Eigen::Vector3d dx(0.5 * w, 0, 0), dy(0, 0.5 * h, 0);
-  AddQuad(c - dx + dy, c + dx + dy, c + dx - dy, c - dx - dy, UvRect(), tag, out);
 }
 
 // A dark wall at z = 4 behind everything.
