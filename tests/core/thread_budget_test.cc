@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <condition_variable>
+#include <mutex>
 #include <opencv2/core.hpp>
 #include <thread>
 
@@ -30,9 +32,9 @@ TEST(ThreadBudgetTest, AppliesToOpenCvsProcessWidePool) {
   EXPECT_EQ(cv::getNumThreads(), original);
 }
 
-TEST(ThreadBudgetTest, DenseMappingYieldsMostTheNetworkNot) {
-  EXPECT_EQ(NiceOffset(BackgroundStage::kSegmentation), 0);
-  EXPECT_GT(NiceOffset(BackgroundStage::kLocalMapping), 0);
+TEST(ThreadBudgetTest, TrackingFirstThenTheNetworkThenMappingDenseLast) {
+  EXPECT_GT(NiceOffset(BackgroundStage::kSegmentation), 0);
+  EXPECT_GT(NiceOffset(BackgroundStage::kLocalMapping), NiceOffset(BackgroundStage::kSegmentation));
   EXPECT_GT(NiceOffset(BackgroundStage::kLoopClosing), NiceOffset(BackgroundStage::kLocalMapping));
   EXPECT_GT(NiceOffset(BackgroundStage::kDenseMapping), NiceOffset(BackgroundStage::kLoopClosing));
 }
@@ -54,6 +56,41 @@ TEST(ThreadBudgetTest, LowersOnlyTheCallingThread) {
   const int expected = std::min(19, stage_before + NiceOffset(BackgroundStage::kDenseMapping));
   EXPECT_EQ(stage_after, expected);
   EXPECT_EQ(ThisThreadsNice(), caller_before);
+}
+
+TEST(ThreadBudgetTest, AnotherThreadCanRestoreALoweredThread) {
+  std::mutex mutex;
+  std::condition_variable changed;
+  LoweredThread lowered;
+  bool ready = false;
+  bool restored = false;
+  int nice_lowered = 0;
+  int nice_restored = 0;
+  std::thread stage([&] {
+    const int before = ThisThreadsNice();
+    LoweredThread mine = LowerCurrentThreadPriority(BackgroundStage::kLocalMapping);
+    nice_lowered = ThisThreadsNice() - before;
+    std::unique_lock<std::mutex> lock(mutex);
+    lowered = mine;
+    ready = true;
+    changed.notify_all();
+    changed.wait(lock, [&] { return restored; });
+    nice_restored = ThisThreadsNice() - before;
+  });
+  bool raised = false;
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    changed.wait(lock, [&] { return ready; });
+    EXPECT_NE(lowered.thread_id, 0);
+    raised = RestoreThreadPriority(lowered);
+    restored = true;
+    changed.notify_all();
+  }
+  stage.join();
+  EXPECT_EQ(nice_lowered, NiceOffset(BackgroundStage::kLocalMapping));
+  // Raising a priority needs CAP_SYS_NICE (root has it): without it nothing changes.
+  EXPECT_EQ(nice_restored, raised ? 0 : nice_lowered);
+  if (geteuid() == 0) EXPECT_TRUE(raised);
 }
 #endif
 

@@ -115,13 +115,14 @@ TEST(DenseMapper, ThreadedAndSequentialGiveTheSameMap) {
 }
 
 // Keyframes handed over faster than the dense thread integrates them (prepared in advance, then
-// handed over back to back; one fits the queue): in a realtime run they are dropped and counted
-// and the hand-over never waits; otherwise every one is integrated.
+// handed over back to back; one fits the realtime queue): in a realtime run they are dropped and
+// counted and the hand-over never waits; otherwise every one is integrated.
 TEST(DenseMapper, NeverBlockDropsKeyFramesItHasNoRoomForAndCountsThem) {
   const CameraOptions camera = SmallCamera();
   DenseMapOptions options;
-  options.queue_capacity = 1;
-  options.enhancement_frames = 0;  // a keyframe is handed over at once
+  options.live_queue_capacity = 1;  // realtime runs use this one
+  options.queue_capacity = 64;      // room for every keyframe: the other runs never drop
+  options.enhancement_frames = 0;   // a keyframe is handed over at once
   constexpr std::size_t kKeyFrames = 40;
   for (const bool never_block : {true, false}) {
     std::vector<DenseFrame> frames;

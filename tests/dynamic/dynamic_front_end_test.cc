@@ -369,6 +369,28 @@ TEST_F(DynamicFrontEndTest, RealtimeKeyFrameWaitIsBounded) {
   EXPECT_LT(wait.max_ms, 400.0);  // generous: far below the network's 600 ms
 }
 
+TEST_F(DynamicFrontEndTest, RealtimeKeyFrameDoesNotWaitForMasksDueAfterItsBound) {
+  // A 300 ms network and a 20 ms bound. Frame 0 is segmented first (its pass sets the estimate).
+  // Frame 1 is a likely keyframe that the idle network is about to take, but its masks are
+  // due a whole pass later: waiting 20 ms could not bring them, so it does not wait at all.
+  const Sequence sequence = Render(2, false, nullptr, [](int) { return 0.0; });
+  DynamicFrontEndConfig config;
+  config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 300);
+  config.realtime = true;
+  config.segmentation.keyframe_wait_ms = 20.0;
+  StageTimings timings;
+  DynamicFrontEnd stage(config, 1000, map_, &timings);
+  stage.BeginFrame(0.0, sequence.bgr[0], false);
+  stage.Filter(Extract(sequence, 0), sequence.bgr[0], sequence.images[0].depth);
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));  // frame 0's pass is done
+  stage.BeginFrame(0.033, sequence.bgr[1], true);
+  stage.Filter(Extract(sequence, 1), sequence.bgr[1], sequence.images[1].depth);
+  EXPECT_FALSE(stage.LastReport().own_masks);
+  EXPECT_EQ(stage.Stats().keyframe_waits, 0u);
+  const TimingSummary wait = timings.Summaries().at("segmentation_wait");
+  EXPECT_LT(wait.max_ms, 19.0);
+}
+
 TEST_F(DynamicFrontEndTest, RealtimeCarriesLaggingMasksOntoAWalkingPersonByItsTracks) {
   // Frame 0 is segmented; the network then stalls, so frames 1..6 get frame 0's masks carried
   // along the flow tracks (Segmentation.propagation objects, the default).

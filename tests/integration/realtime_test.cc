@@ -98,7 +98,7 @@ TEST(RealtimeIntegrationTest, TrackingNeverWaitsForASlowNetworkAndSkipsWhatItCan
     EXPECT_EQ(tracked_stamps.count(pose.timestamp), 1u) << pose.timestamp;
   }
   // Tracking never waited for the network (1 s per frame): the wait for masks is nothing but
-  // the bounded keyframe waits (Segmentation.keyframeWaitMs, 50 ms), and whole frames stay far
+  // the bounded keyframe waits (Segmentation.keyframeWaitMs, 15 ms), and whole frames stay far
   // below the network's latency. Generous bounds: the machine may be loaded.
   const TimingSummary wait = stats.stages.at("segmentation_wait");
   EXPECT_LT(wait.median_ms, 5.0);

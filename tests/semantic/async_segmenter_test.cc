@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "drvslam/core/error.h"
@@ -148,6 +149,42 @@ TEST(AsyncSegmenterTest, WaitForGivesUpAtItsDeadline) {
   const auto frame = segmenter.WaitFor(1, 5000.0);
   ASSERT_NE(frame, nullptr);
   EXPECT_EQ(frame->segmentation.frame_index, 1u);
+}
+
+// A keyframe waits for its own masks only when they are due within its bound: the expected wait
+// is the rest of the network's recent pass time for a frame it is on, nothing for one another
+// frame is ahead of.
+TEST(AsyncSegmenterTest, ExpectedWaitFollowsTheRecentPassTime) {
+  auto fake = std::make_shared<FakeSegmenter>();
+  AsyncSegmenterOptions options;
+  options.drop_when_busy = true;
+  AsyncSegmenter segmenter(fake, options);
+  fake->Close();
+  segmenter.Submit(1, 0.0, kImage);
+  fake->AwaitStarted(1);
+  // No pass has finished yet: no estimate, so nothing to wait for beyond the caller's bound.
+  EXPECT_EQ(segmenter.ExpectedWaitMs(1), 0.0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(120));
+  fake->Open();
+  ASSERT_NE(segmenter.Wait(1), nullptr);
+  const double pass_ms = segmenter.Wait(1)->segment_ms;
+  ASSERT_GE(pass_ms, 119.0);
+  EXPECT_EQ(segmenter.ExpectedWaitMs(1), 0.0);  // finished
+
+  fake->Close();
+  segmenter.Submit(2, 0.0, kImage);
+  fake->AwaitStarted(2);
+  const std::optional<double> running = segmenter.ExpectedWaitMs(2);
+  ASSERT_TRUE(running.has_value());
+  EXPECT_GT(*running, 60.0);  // most of a 120 ms pass is still ahead
+  EXPECT_LE(*running, pass_ms);
+  segmenter.Submit(3, 0.0, kImage);
+  EXPECT_FALSE(segmenter.ExpectedWaitMs(3).has_value());  // frame 2 is ahead of it
+  EXPECT_FALSE(segmenter.ExpectedWaitMs(9).has_value());  // never submitted
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  EXPECT_EQ(segmenter.ExpectedWaitMs(2), 0.0);  // overdue: due any moment
+  fake->Open();
+  ASSERT_NE(segmenter.Wait(3), nullptr);
 }
 
 TEST(AsyncSegmenterTest, OldResultsAreForgottenBeyondTheKeepLimit) {

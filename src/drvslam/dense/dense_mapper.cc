@@ -44,7 +44,8 @@ DenseMapper::DenseMapper(const CameraOptions& camera, const DenseMapOptions& opt
       frames_after_(options.enhancement_frames - options.enhancement_frames / 2),
       coarse_(options.leaf_size, {options.min_views, options.evidence_max}),
       fine_(options.object_leaf_size, {1, options.evidence_max}),
-      queue_(static_cast<std::size_t>(options.queue_capacity)) {
+      queue_(static_cast<std::size_t>(never_block ? options.live_queue_capacity
+                                                  : options.queue_capacity)) {
   if (!sequential_) worker_ = std::thread([this] { Run(); });
 }
 
@@ -55,11 +56,20 @@ void DenseMapper::Shutdown() {
   DispatchWaiting(/*flush=*/true);
   stopped_ = true;
   queue_.Close();
+  {
+    // What is left no longer competes with tracking: drain it at the process's priority (a
+    // stage at nice 19 next to a busy machine would take many seconds per keyframe).
+    std::lock_guard<std::mutex> lock(worker_priority_mutex_);
+    RestoreThreadPriority(worker_priority_);
+  }
   if (worker_.joinable()) worker_.join();
 }
 
 void DenseMapper::Run() {
-  LowerCurrentThreadPriority(BackgroundStage::kDenseMapping);
+  {
+    std::lock_guard<std::mutex> lock(worker_priority_mutex_);
+    worker_priority_ = LowerCurrentThreadPriority(BackgroundStage::kDenseMapping);
+  }
   while (std::optional<Job> job = queue_.Pop()) {
     // Frames are checked when handed over; whatever else goes wrong loses one keyframe, never
     // the thread.

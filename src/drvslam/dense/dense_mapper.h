@@ -25,6 +25,7 @@
 
 #include "drvslam/core/bounded_queue.h"
 #include "drvslam/core/camera.h"
+#include "drvslam/core/thread_budget.h"
 #include "drvslam/core/timing.h"
 #include "drvslam/dense/anchored_voxel_map.h"
 #include "drvslam/dense/dense_frame.h"
@@ -132,6 +133,9 @@ class DenseMapper {
   StageTimings* timings_;
   bool never_block_;
   std::atomic<std::size_t> keyframes_dropped_{0};
+  // The worker's lowered priority, raised back for the last keyframes at shutdown.
+  std::mutex worker_priority_mutex_;
+  LoweredThread worker_priority_;
 
   PixelRays rays_;
   int frames_before_ = 0;  // enhancement frames before a keyframe

@@ -55,6 +55,8 @@ const OptionTable<DenseMapOptions>& DenseMapOptionTable() {
              "Exported points need this many occupied neighbouring voxels (0 keeps all).")
         .Int("queueCapacity", &D::queue_capacity, Bounds::AtLeast(1),
              "Keyframes waiting for the dense thread before tracking blocks.")
+        .Int("liveQueueCapacity", &D::live_queue_capacity, Bounds::AtLeast(1),
+             "--realtime: keyframes waiting for the dense thread before new ones are dropped.")
         .Int("compactEvery", &D::compact_every, Bounds::AtLeast(1),
              "Re-key the stored map with current keyframe poses after this many keyframes.")
         .Rule(

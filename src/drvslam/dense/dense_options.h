@@ -63,6 +63,10 @@ struct DenseMapOptions {
   int min_neighbours = 1;
   // Keyframes waiting for the dense thread before tracking blocks.
   int queue_capacity = 16;
+  // Realtime runs: keyframes waiting for the dense thread before new ones are dropped (and
+  // counted). Small, so that the map stays close to the camera and the last keyframes are
+  // drained within a second or two when the camera stops.
+  int live_queue_capacity = 4;
   // The stored map is re-keyed with the current keyframe poses after this many keyframes, so
   // voxels that pose corrections made coincide merge and memory follows the explored volume.
   int compact_every = 10;

@@ -248,12 +248,16 @@ Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
 }
 
 void DynamicFrontEnd::AwaitKeyFrameMasks() {
-  // Only when the network is on this image or about to be: else another forward pass is ahead
-  // and waiting would not bring this frame's masks.
+  // Only when the network is expected to finish this very image within the bound: a wait that
+  // cannot bring the frame's own masks would only delay tracking (and make the camera's next
+  // frame replace the one after it).
   const double wait_ms = config_.segmentation.keyframe_wait_ms;
-  if (report_.keyframe_likely && wait_ms > 0.0 && async_->TakenOrNext(next_index_)) {
-    ++stats_.keyframe_waits;
-    if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
+  if (report_.keyframe_likely && wait_ms > 0.0) {
+    const std::optional<double> expected_ms = async_->ExpectedWaitMs(next_index_);
+    if (expected_ms && *expected_ms <= wait_ms) {
+      ++stats_.keyframe_waits;
+      if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
+    }
   }
   report_.own_masks = async_->TryGet(next_index_) != nullptr;
 }

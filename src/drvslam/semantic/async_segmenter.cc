@@ -88,7 +88,9 @@ void AsyncSegmenter::WorkerLoop() {
 void AsyncSegmenter::Run(const Job& job) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    slots_[job.frame_index].state = State::kRunning;
+    Slot& slot = slots_[job.frame_index];
+    slot.state = State::kRunning;
+    slot.started = std::chrono::steady_clock::now();
   }
   auto frame = std::make_shared<SegmentedFrame>();
   std::exception_ptr error;
@@ -113,6 +115,11 @@ void AsyncSegmenter::Run(const Job& job) {
     slot.result = frame;
     ++stats_.segmented;
     segment_ms_.Add(frame->segment_ms);
+    // Weighted towards the last few passes: the pass time follows the machine's load.
+    constexpr double kRecentWeight = 0.25;
+    typical_segment_ms_ = typical_segment_ms_ ? (1.0 - kRecentWeight) * *typical_segment_ms_ +
+                                                    kRecentWeight * frame->segment_ms
+                                              : frame->segment_ms;
     if (!latest_ || latest_->segmentation.frame_index < job.frame_index) latest_ = frame;
   }
   TrimLocked();
@@ -175,19 +182,34 @@ std::shared_ptr<const SegmentedFrame> AsyncSegmenter::WaitFor(std::size_t frame_
   return slot->second.result;
 }
 
-bool AsyncSegmenter::TakenOrNext(std::size_t frame_index) const {
+std::optional<double> AsyncSegmenter::ExpectedWaitMs(std::size_t frame_index) const {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto slot = slots_.find(frame_index);
-  if (slot == slots_.end()) return false;
-  if (slot->second.state == State::kRunning || slot->second.state == State::kDone) return true;
-  if (slot->second.state != State::kQueued) return false;
-  for (const auto& [index, other] : slots_) {
-    if (index != frame_index && (other.state == State::kRunning ||
-                                 (other.state == State::kQueued && index < frame_index))) {
-      return false;
+  if (slot == slots_.end()) return std::nullopt;
+  // Before the first pass finishes there is no estimate: assume nothing, promise nothing.
+  const double pass_ms = typical_segment_ms_.value_or(0.0);
+  switch (slot->second.state) {
+    case State::kDone:
+      return 0.0;
+    case State::kRunning: {
+      const double elapsed_ms = std::chrono::duration<double, std::milli>(
+                                    std::chrono::steady_clock::now() - slot->second.started)
+                                    .count();
+      return std::max(0.0, pass_ms - elapsed_ms);
     }
+    case State::kQueued:
+      for (const auto& [index, other] : slots_) {
+        if (index != frame_index && (other.state == State::kRunning ||
+                                     (other.state == State::kQueued && index < frame_index))) {
+          return std::nullopt;
+        }
+      }
+      return pass_ms;
+    case State::kFailed:
+    case State::kDropped:
+      break;
   }
-  return true;
+  return std::nullopt;
 }
 
 std::shared_ptr<const SegmentedFrame> AsyncSegmenter::TryGet(std::size_t frame_index) const {

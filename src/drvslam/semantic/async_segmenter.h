@@ -7,6 +7,7 @@
 // WaitFor() a frame's own masks within a bounded time, neither blocking longer.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -14,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -67,9 +69,11 @@ class AsyncSegmenter {
   // Waits at most `timeout_ms` for frame `frame_index`; its result when it finished in time,
   // else nullptr (also when it failed, was dropped or is unknown: never throws).
   std::shared_ptr<const SegmentedFrame> WaitFor(std::size_t frame_index, double timeout_ms);
-  // Whether no other frame is ahead of that one: it is being segmented or finished, or it waits
-  // while no frame is being segmented (the worker is about to take it); never blocks.
-  bool TakenOrNext(std::size_t frame_index) const;
+  // How long until that frame's masks are expected, from the network's recent forward-pass
+  // times: 0 when finished, the rest of the typical pass when it is being segmented, a whole
+  // pass when it waits while the network is idle (the worker is about to take it); nullopt when
+  // another frame is ahead of it or it is unknown, dropped or failed. Never blocks.
+  std::optional<double> ExpectedWaitMs(std::size_t frame_index) const;
   // That frame's result when it is finished, else nullptr; never blocks.
   std::shared_ptr<const SegmentedFrame> TryGet(std::size_t frame_index) const;
   // The finished frame with the highest index, or nullptr; never blocks.
@@ -82,6 +86,7 @@ class AsyncSegmenter {
   enum class State { kQueued, kRunning, kDone, kFailed, kDropped };
   struct Slot {
     State state = State::kQueued;
+    std::chrono::steady_clock::time_point started;  // when the network took it
     std::shared_ptr<const SegmentedFrame> result;
     std::exception_ptr error;
   };
@@ -108,6 +113,8 @@ class AsyncSegmenter {
   std::shared_ptr<const SegmentedFrame> latest_;
   AsyncSegmenterStats stats_;
   BoundedSample segment_ms_;  // bounded memory over long runs
+  // Recent forward-pass time: an exponential average, for ExpectedWaitMs.
+  std::optional<double> typical_segment_ms_;
   bool stopping_ = false;
   bool has_submitted_ = false;
   std::size_t last_index_ = 0;

@@ -64,7 +64,8 @@ const OptionTable<SegmentationOptions>& SegmentationOptionTable() {
         .Int("dnnThreads", &S::dnn_threads, Bounds::In(0, 1024).Note("0 = the thread budget"),
              "OpenCV's process-wide thread pool size.")
         .Real("keyframeWaitMs", &S::keyframe_wait_ms, Bounds::In(0, 1000).Note("ms"),
-              "--realtime: a likely keyframe waits this long for its own masks (0 = never).")
+              "--realtime: a likely keyframe waits at most this long for masks due by then (0 = "
+              "never).")
         .Text("masksDir", &S::masks_dir, "Mask files folder (masks); relative to the dataset.")
         .Choice("maskNaming", &S::mask_naming, namings,
                 "How mask files match frames: timestamp stems, frame indices, or auto.")

@@ -42,12 +42,12 @@ struct SegmentationOptions {
   // core) in sequential runs.
   int dnn_threads = 0;
   // Segmentation.keyframeWaitMs (--realtime only): a frame that tracking expects to become a
-  // keyframe (Tracker::KeyFrameLikely), and whose image the network is on (no other frame
-  // ahead of it),
-  // waits at most this long for its own masks before it falls back to carried ones; other
-  // frames never wait. The default is about one 320x256 forward pass on one idle core minus
-  // extraction: shorter waits almost never see the masks arrive. 0 = keyframes never wait.
-  double keyframe_wait_ms = 50.0;
+  // keyframe (Tracker::KeyFrameLikely) waits at most this long for its own masks, and only when
+  // the network is expected to finish its image within that time (from its recent forward-pass
+  // times); other frames never wait. Short, because a frame that overruns the camera's period
+  // makes the next camera frame replace the one after it: with 50 ms a 30 Hz run skipped 6-19
+  // frames of 300, with 15 ms 5-8 (3 runs each). 0 = keyframes never wait.
+  double keyframe_wait_ms = 15.0;
 
   std::string masks_dir = "masks";  // mask-file backend; relative paths are under the dataset
   MaskNaming mask_naming = MaskNaming::kAuto;

@@ -83,13 +83,25 @@ std::vector<PreparedEntry> Prepare(const BenchmarkOptions& options) {
   return prepared;
 }
 
-// frames_skipped from the run's stats.json, where the run reports it (realtime input).
-std::optional<std::size_t> ReadFramesSkipped(const fs::path& stats_path) {
+// What only realtime runs report in their stats.json.
+struct RealtimeFigures {
+  std::optional<std::size_t> frames_skipped;
+  std::optional<double> camera_to_done_s;
+};
+RealtimeFigures ReadRealtimeFigures(const fs::path& stats_path) {
   std::ifstream in(stats_path);
   const nlohmann::json stats = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  const auto skipped = stats.is_object() ? stats.find("frames_skipped") : stats.end();
-  if (skipped == stats.end() || !skipped->is_number_unsigned()) return std::nullopt;
-  return skipped->get<std::size_t>();
+  RealtimeFigures figures;
+  if (!stats.is_object()) return figures;
+  const auto skipped = stats.find("frames_skipped");
+  if (skipped != stats.end() && skipped->is_number_unsigned()) {
+    figures.frames_skipped = skipped->get<std::size_t>();
+  }
+  const auto camera = stats.find("camera_to_done_s");
+  if (camera != stats.end() && camera->is_number()) {
+    figures.camera_to_done_s = camera->get<double>();
+  }
+  return figures;
 }
 
 // ATE and RPE of the run's trajectory; eval.json records them, or why they are missing.
@@ -166,7 +178,9 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
     run.track_median_ms = total->second.median_ms;
     run.track_p95_ms = total->second.p95_ms;
   }
-  run.frames_skipped = ReadFramesSkipped(run_dir / "stats.json");
+  const RealtimeFigures realtime = ReadRealtimeFigures(run_dir / "stats.json");
+  run.frames_skipped = realtime.frames_skipped;
+  run.camera_to_done_s = realtime.camera_to_done_s;
   if (summary.interrupted) {
     run.status = RunStatus::kInterrupted;
     run.eval_note = "interrupted: not evaluated";
@@ -196,9 +210,11 @@ std::size_t BenchmarkReport::FailedRuns() const {
 
 BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   std::vector<double> ate, rpe_trans, rpe_rot, tracked, lost, wall, fps, median, p95, skipped;
+  std::vector<double> camera_to_done;
   BenchmarkAggregate aggregate;
   aggregate.runs = runs.size();
   bool all_report_skipped = true;
+  bool all_report_camera = true;
   for (const BenchmarkRun& run : runs) {
     if (run.status != RunStatus::kOk) continue;
     ++aggregate.finished;
@@ -216,6 +232,11 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
     } else {
       all_report_skipped = false;
     }
+    if (run.camera_to_done_s) {
+      camera_to_done.push_back(*run.camera_to_done_s);
+    } else {
+      all_report_camera = false;
+    }
   }
   aggregate.evaluated = ate.size();
   aggregate.ate_rmse = ComputeErrorStatistics(ate);
@@ -229,6 +250,9 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   aggregate.track_p95_ms = ComputeErrorStatistics(p95);
   if (aggregate.finished > 0 && all_report_skipped) {
     aggregate.frames_skipped = ComputeErrorStatistics(skipped);
+  }
+  if (aggregate.finished > 0 && all_report_camera) {
+    aggregate.camera_to_done_s = ComputeErrorStatistics(camera_to_done);
   }
   return aggregate;
 }

@@ -46,6 +46,9 @@ struct BenchmarkRun {
   double track_p95_ms = 0.0;
   double vocabulary_load_ms = 0.0;
   std::optional<std::size_t> frames_skipped;  // when the run's stats.json reports it
+  // Realtime runs: from the camera's first frame until every thread drained (wall_s without
+  // start-up, decoding ahead and writing the outputs).
+  std::optional<double> camera_to_done_s;
 };
 
 // Statistics over the runs of one entry (numpy's median and population std).
@@ -63,7 +66,8 @@ struct BenchmarkAggregate {
   ErrorStatistics fps;
   ErrorStatistics track_median_ms;
   ErrorStatistics track_p95_ms;
-  std::optional<ErrorStatistics> frames_skipped;  // when every finished run reports it
+  std::optional<ErrorStatistics> frames_skipped;    // when every finished run reports it
+  std::optional<ErrorStatistics> camera_to_done_s;  // likewise
 };
 
 struct BenchmarkEntryResult {

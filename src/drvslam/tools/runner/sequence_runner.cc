@@ -162,6 +162,7 @@ RunSummary RunSequence(const RunOptions& options,
   std::size_t total = dataset.Size();
   if (options.max_frames > 0 && options.max_frames < total) total = options.max_frames;
   summary.sequence_frames = total;
+  summary.paced = paced;
   const auto track = [&](const RgbdFrame& frame) {
     system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
     if (motion_truth && system.Dynamic()) {
@@ -180,6 +181,7 @@ RunSummary RunSequence(const RunOptions& options,
     summary.frames_skipped = feeder->Skipped();
     summary.frames_skipped_loading = feeder->SkippedWhileLoading();
     summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
+    summary.decode_ahead_s = feeder->Preloaded() ? feeder->PreloadSeconds() : 0.0;
     feeder.reset();
   };
   // The frame being read or tracked, for the message of an unexpected failure.
@@ -283,6 +285,10 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
                             {"vocabulary_load_ms", s.vocabulary_load_ms}};
   json["fps"] = summary.fps;
   json["wall_s"] = summary.wall_s;
+  if (summary.paced) {
+    json["decode_ahead_s"] = summary.decode_ahead_s;
+    json["camera_to_done_s"] = summary.wall_s - summary.decode_ahead_s;
+  }
   json["tracking_fps"] = s.tracking_fps;
   json["interrupted"] = summary.interrupted;
   json["settings"] = summary.settings_source;

@@ -54,6 +54,11 @@ struct RunSummary {
   std::size_t frames_skipped_loading = 0;
   // --realtime: the most a frame arrived after its timestamp because loading it fell behind.
   double max_arrival_lag_ms = 0.0;
+  // --realtime: seconds spent decoding the recording before the camera clock started (a camera
+  // hands over decoded images); part of wall_s. wall_s - decode_ahead_s is the time from the
+  // camera's first frame until every thread has drained.
+  double decode_ahead_s = 0.0;
+  bool paced = false;  // frames came at their timestamps (--realtime, not --sequential)
   // Frames (and list entries) skipped because they could not be used, per FrameFaultName, and
   // the first FrameRejections::kKeptExamples of them.
   std::size_t frames_rejected = 0;
