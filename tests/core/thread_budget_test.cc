@@ -32,9 +32,9 @@ TEST(ThreadBudgetTest, AppliesToOpenCvsProcessWidePool) {
   EXPECT_EQ(cv::getNumThreads(), original);
 }
 
-TEST(ThreadBudgetTest, TrackingFirstThenTheNetworkThenMappingDenseLast) {
-  EXPECT_GT(NiceOffset(BackgroundStage::kSegmentation), 0);
-  EXPECT_GT(NiceOffset(BackgroundStage::kLocalMapping), NiceOffset(BackgroundStage::kSegmentation));
+TEST(ThreadBudgetTest, DenseMappingYieldsMostTheNetworkNot) {
+  EXPECT_EQ(NiceOffset(BackgroundStage::kSegmentation), 0);
+  EXPECT_GT(NiceOffset(BackgroundStage::kLocalMapping), 0);
   EXPECT_GT(NiceOffset(BackgroundStage::kLoopClosing), NiceOffset(BackgroundStage::kLocalMapping));
   EXPECT_GT(NiceOffset(BackgroundStage::kDenseMapping), NiceOffset(BackgroundStage::kLoopClosing));
 }
@@ -58,17 +58,17 @@ TEST(ThreadBudgetTest, LowersOnlyTheCallingThread) {
   EXPECT_EQ(ThisThreadsNice(), caller_before);
 }
 
-TEST(ThreadBudgetTest, AnotherThreadCanRestoreALoweredThread) {
+TEST(ThreadBudgetTest, AnotherThreadCanRestoreAChangedPriority) {
   std::mutex mutex;
   std::condition_variable changed;
-  LoweredThread lowered;
+  ChangedPriority lowered;
   bool ready = false;
   bool restored = false;
   int nice_lowered = 0;
   int nice_restored = 0;
   std::thread stage([&] {
     const int before = ThisThreadsNice();
-    LoweredThread mine = LowerCurrentThreadPriority(BackgroundStage::kLocalMapping);
+    ChangedPriority mine = LowerCurrentThreadPriority(BackgroundStage::kLocalMapping);
     nice_lowered = ThisThreadsNice() - before;
     std::unique_lock<std::mutex> lock(mutex);
     lowered = mine;

@@ -29,25 +29,28 @@ void ApplyOpenCvThreadBudget(int threads) {
 }
 
 int NiceOffset(BackgroundStage stage) {
-  // Chosen by realtime runs on 2 cores (README, Real time): 3 runs each, YOLO 320x256, 30 Hz.
-  // Offsets 2/4/0/10 skipped 3-13 frames of 300, 6/8/3/19 skipped 0-1: tracking stopped sharing
-  // its core with local mapping. The network stays close to tracking because late masks cost
-  // accuracy (nice 5 tripled the ATE of a walking sequence).
+  // Chosen by realtime runs on 2 cores (README, Real time). The network keeps the tracking
+  // thread's priority because late masks cost accuracy (nice 5 tripled the ATE of a walking
+  // sequence); local mapping and loop closing yield a little, the dense map the most. Lowering
+  // them further (network 3, local mapping 6, dense 19) freed tracking's core on a quiet
+  // machine (0-1 of 300 frames skipped against 6-15) but lost their CPU to other programs on a
+  // busy one (ATE 0.38-1.08 cm against 0.22-0.31 beside stress-ng); raising the tracking
+  // thread instead (nice -5) doubled the ATE even on a quiet machine.
   switch (stage) {
     case BackgroundStage::kLocalMapping:
-      return 6;
+      return 2;
     case BackgroundStage::kLoopClosing:
-      return 8;
+      return 4;
     case BackgroundStage::kSegmentation:
-      return 3;
+      return 0;
     case BackgroundStage::kDenseMapping:
-      return 19;
+      return 10;
   }
   return 0;
 }
 
-LoweredThread LowerCurrentThreadPriority(BackgroundStage stage) {
-  LoweredThread lowered;
+ChangedPriority LowerCurrentThreadPriority(BackgroundStage stage) {
+  ChangedPriority lowered;
 #ifdef __linux__
   const int offset = NiceOffset(stage);
   if (offset == 0) return lowered;
@@ -68,7 +71,7 @@ LoweredThread LowerCurrentThreadPriority(BackgroundStage stage) {
   return lowered;
 }
 
-bool RestoreThreadPriority(const LoweredThread& thread) {
+bool RestoreThreadPriority(const ChangedPriority& thread) {
 #ifdef __linux__
   if (thread.thread_id == 0) return true;
   if (setpriority(PRIO_PROCESS, static_cast<id_t>(thread.thread_id), thread.original_nice) != 0) {

@@ -26,26 +26,26 @@ namespace drvslam {
 
 // The threads that run beside tracking. Tracking has a deadline (the next camera frame), so when
 // the cores are short the stages whose delay costs least yield to it by running at a lower
-// scheduling priority (a higher nice value). The offsets also steer Linux's load balancer, which
-// spreads threads by their weights: with the network a little below tracking and local mapping
-// below the network, on 2 cores tracking gets a core to itself while local mapping shares the
-// network's, instead of tracking's as often as not. The dense map, which nothing in the loop
-// waits for, yields the most. A thread that waits for another (tracking waiting for masks, for
-// example) leaves the core to it at any priority.
+// scheduling priority (a higher nice value): the dense map, which nothing in the loop waits for,
+// the most; loop closing, which is rare, and local mapping, which has a keyframe's time, a little.
+// The network keeps the tracking thread's priority: its masks are only useful while fresh. The
+// offsets are kept small because they also count against every other program on the machine. A
+// thread that waits for another (tracking waiting for masks, for example) leaves the core to it
+// at any priority.
 enum class BackgroundStage { kLocalMapping, kLoopClosing, kSegmentation, kDenseMapping };
 // The nice offset of a stage's thread against the process's own priority.
 int NiceOffset(BackgroundStage stage);
-// A thread whose priority was lowered, to raise it back later from any thread.
-struct LoweredThread {
+// A thread whose priority was lowered, to give it back later from any thread.
+struct ChangedPriority {
   long thread_id = 0;     // the kernel's thread id (0: nothing was lowered)
   int original_nice = 0;  // its nice value before
 };
 // Lowers the calling thread's priority by NiceOffset(stage). Called first thing by each stage's
 // own thread; a sequential run has no such threads. Linux only (nice is per thread there); a
 // refusal by the OS is logged and otherwise ignored.
-LoweredThread LowerCurrentThreadPriority(BackgroundStage stage);
+ChangedPriority LowerCurrentThreadPriority(BackgroundStage stage);
 // Gives a lowered thread its original priority back, for work that no longer competes with
 // tracking (the dense map's last keyframes after the camera stopped). Raising a priority needs
 // CAP_SYS_NICE or a RLIMIT_NICE allowance; without them it returns false and nothing changes.
-bool RestoreThreadPriority(const LoweredThread& thread);
+bool RestoreThreadPriority(const ChangedPriority& thread);
 }  // namespace drvslam

@@ -135,7 +135,7 @@ class DenseMapper {
   std::atomic<std::size_t> keyframes_dropped_{0};
   // The worker's lowered priority, raised back for the last keyframes at shutdown.
   std::mutex worker_priority_mutex_;
-  LoweredThread worker_priority_;
+  ChangedPriority worker_priority_;
 
   PixelRays rays_;
   int frames_before_ = 0;  // enhancement frames before a keyframe
