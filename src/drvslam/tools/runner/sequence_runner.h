@@ -36,6 +36,8 @@ struct RunOptions {
   // --strict-settings: an unknown key in one of drvslam's settings sections is an error, not a
   // warning.
   bool strict_settings = false;
+  // --frame-log FILE: one line per frame (tools/runner/frame_log.h); empty: none.
+  std::string frame_log;
 };
 
 // A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
