@@ -274,6 +274,8 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["map_points"] = s.map_points;
   json["reference_fallbacks"] = s.reference_fallbacks;
   json["frames_lost"] = s.frames_lost;
+  json["map_resets"] = s.map_resets;
+  json["frames_discarded"] = s.frames_discarded;
   json["frames_skipped"] = summary.frames_skipped;
   json["frames_skipped_loading"] = summary.frames_skipped_loading;
   json["frames_rejected"] = summary.frames_rejected;
