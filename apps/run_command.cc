@@ -128,6 +128,9 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
   command->add_flag("--strict-settings", options->strict_settings,
                     "unknown keys in drvslam's settings sections are errors (default: warnings "
                     "naming the nearest known key)");
+  command->add_option("--frame-log", options->frame_log,
+                      "write one line per frame there: wall clock, ms inside TrackRGBD, "
+                      "tracked, keyframes, map points, resident memory (tab-separated)");
   command->add_option("--debug-frames", dynamic.debug_dir,
                       "write one picture per frame there: kept features green, removed red, "
                       "moving masks red, static masks green");

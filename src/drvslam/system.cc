@@ -144,7 +144,6 @@ System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_op
     LoopCloser::Hooks hooks;
     hooks.pause_mapping = [this] { local_mapper.Pause(); };
     hooks.resume_mapping = [this] { local_mapper.Resume(); };
-    hooks.map_corrected = [this] { tracker.NotifyMapCorrected(); };
     loop_closer = std::make_unique<LoopCloser>(map, keyframe_database, options.loop,
                                                options.sequential, std::move(hooks), &timings);
     local_mapper.SetKeyFrameSink([this](const std::shared_ptr<KeyFrame>& keyframe) {
@@ -219,6 +218,9 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
     }
   }
   timings.Record("tracking", tracking.ElapsedMs());
+  // A loss asked for a new map: it waits for local mapping's keyframe in flight, which may need
+  // the update lock, so it runs after the lock is released.
+  tracker.ApplyPendingReset();
   if (dynamic) dynamic->NoteKeyFrame(result.new_keyframe != nullptr);
   // Sequential: the keyframe is mapped here, before the next frame.
   if (result.new_keyframe) local_mapper.InsertKeyFrame(result.new_keyframe);
@@ -299,6 +301,8 @@ SystemStats System::Impl::Stats() const {
   stats.map_points = map.MapPointCount();
   stats.reference_fallbacks = tracker.ReferenceFallbacks();
   stats.frames_lost = tracker.Recorder().LostAfterInitialization();
+  stats.map_resets = tracker.Recorder().MapResets();
+  stats.frames_discarded = tracker.Recorder().DiscardedCount();
   stats.relocalizations = tracker.Relocalizations();
   stats.relocalization_attempts = relocalizer ? relocalizer->Attempts() : 0;
   stats.vocabulary_load_ms = vocabulary_load_ms;

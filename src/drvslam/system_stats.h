@@ -22,7 +22,11 @@ struct SystemStats {
   std::size_t map_points = 0;
   int reference_fallbacks = 0;
   std::size_t frames_lost = 0;  // frames after initialization that were not tracked
-  int relocalizations = 0;      // times tracking was lost and found again
+  // Tracking.resetWhenLost: maps started anew, and the frames tracked in the maps they
+  // discarded (not in the trajectory, whose world frame is the final map's; not in `tracked`).
+  int map_resets = 0;
+  std::size_t frames_discarded = 0;
+  int relocalizations = 0;  // times tracking was lost and found again
   int relocalization_attempts = 0;
   double vocabulary_load_ms = 0.0;  // 0 when no vocabulary was loaded
   LocalMappingStats mapping;

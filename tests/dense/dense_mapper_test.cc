@@ -241,5 +241,34 @@ TEST(DenseMapper, RemovedKeyFramesFollowTheirParent) {
               1e-9);
 }
 
+TEST(DenseMapper, CulledKeyFramesAreReleasedAndTheirPointsFollowTheParent) {
+  const CameraOptions camera = SmallCamera();
+  DenseMapOptions options;
+  options.min_views = 1;
+  options.enhancement_frames = 0;
+  DenseMapper mapper(camera, options, true);
+  const std::shared_ptr<KeyFrame> parent = MakeKeyFrame(camera, SE3(), 0);
+  const SE3 offset(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5));
+  std::shared_ptr<KeyFrame> child = MakeKeyFrame(camera, offset, 1);
+  child->SetParent(parent);
+  mapper.AddKeyFrame(PlaneFrame(camera, 2.0f, offset, 1), child);
+  const std::weak_ptr<KeyFrame> watched = child;
+  // Local mapping culls the child: the map no longer holds it.
+  child->SetBad();
+  child.reset();
+  // The next keyframe hands the culled one's anchor to its parent...
+  mapper.AddKeyFrame(PlaneFrame(camera, 2.0f, SE3(), 2), parent);
+  EXPECT_TRUE(watched.expired()) << "the dense map still holds a culled keyframe";
+  // ...and its points still follow the parent's corrections: everything moves 0.5 m along z.
+  const DenseCloud before = mapper.Assemble();
+  ASSERT_FALSE(before.empty());
+  parent->SetPose(SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0.5)).Inverse());
+  const DenseCloud after = mapper.Assemble();
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    EXPECT_NEAR(after[i].position.z() - before[i].position.z(), 0.5f, 1e-4);
+  }
+}
+
 }  // namespace
 }  // namespace drvslam

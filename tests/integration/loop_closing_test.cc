@@ -134,9 +134,11 @@ TEST_F(LoopClosingTest, ThreadedLoopClosingFindsTheLoop) {
   const RunSummary summary = Run("threaded", "on", 0, /*sequential=*/false);
   if (!summary.stats.loop)
     DRVSLAM_MISSING_TEST_DATA() << "no bag-of-words vocabulary in this build";
-  // Under load, the frame tracked while a threaded correction rewrites the map can be lost (seen
-  // in 3 of 9 runs at load 6; relocalization recovers on the next frame): at most 1 %.
-  EXPECT_GE(summary.stats.tracked, kFrames * 99 / 100);
+  std::printf("threaded: tracked %zu/%zu, %ld corrections, %ld global BAs\n", summary.stats.tracked,
+              kFrames, summary.stats.loop->corrections, summary.stats.loop->global_bas);
+  // Every frame, also the ones tracked while the correction rewrites the map: tracking re-poses
+  // its last frame whenever the map's correction epoch changed.
+  EXPECT_EQ(summary.stats.tracked, kFrames);
   // Every keyframe local mapping finished reached loop closing before shutdown returned.
   EXPECT_EQ(summary.stats.loop->keyframes_processed, summary.stats.mapping.keyframes_processed);
   EXPECT_GE(summary.stats.loop->corrections, 1);

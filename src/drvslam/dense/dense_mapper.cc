@@ -270,6 +270,7 @@ void DenseMapper::Integrate(KeyFrameJob job) {
       vetoes, camera_, options_);
 
   std::lock_guard<std::mutex> lock(mutex_);
+  ReleaseCulledLocked();
   std::vector<SE3> poses = AnchorPoses();
   if (options_.carve) {
     // The keyframe's depth votes before its own points go in: what it sees through is free.
@@ -282,7 +283,7 @@ void DenseMapper::Integrate(KeyFrameJob job) {
     stats_.carving_votes += coarse_.Carve(view, poses) + fine_.Carve(view, poses);
   }
   const int anchor = static_cast<int>(anchors_.size());
-  anchors_.push_back({job.keyframe, frame.T_wc});
+  anchors_.push_back({job.keyframe, SE3::Identity(), frame.T_wc});
   poses.push_back(T_wa);
   coarse_.Insert(coarse, anchor, poses);
   fine_.Insert(fine, anchor, poses);
@@ -299,9 +300,22 @@ std::vector<SE3> DenseMapper::AnchorPoses() const {
   std::vector<SE3> poses;
   poses.reserve(anchors_.size());
   for (const Anchor& anchor : anchors_) {
-    poses.push_back(anchor.keyframe ? CurrentKeyFramePose(*anchor.keyframe) : anchor.T_wc);
+    poses.push_back(anchor.keyframe ? CurrentKeyFramePose(*anchor.keyframe) * anchor.T_ka
+                                    : anchor.T_wc);
   }
   return poses;
+}
+
+void DenseMapper::ReleaseCulledLocked() {
+  for (Anchor& anchor : anchors_) {
+    while (anchor.keyframe && anchor.keyframe->IsBad()) {
+      std::shared_ptr<const KeyFrame> parent = anchor.keyframe->Parent();
+      if (!parent) break;  // the origin is never culled; a parentless one keeps its last pose
+      // T_wk = T_wp * T_kp^-1, so the anchor relative to the parent is T_kp^-1 * T_ka.
+      anchor.T_ka = anchor.keyframe->PoseRelativeToParent().Inverse() * anchor.T_ka;
+      anchor.keyframe = std::move(parent);
+    }
+  }
 }
 
 void DenseMapper::CompactLocked() {

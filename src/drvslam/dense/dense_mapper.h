@@ -109,8 +109,13 @@ class DenseMapper {
   struct ResetJob {};
   using Job = std::variant<KeyFrameJob, ResetJob>;
 
+  // Where an anchor's points hang: T_wa = T_wk * T_ka, with T_wk the current camera-to-world
+  // pose of `keyframe`. Starts at the anchor's own keyframe; once that
+  // keyframe is culled the anchor is handed to its spanning-tree parent (ReleaseCulledLocked),
+  // so a culled keyframe is freed instead of being held for the life of the map.
   struct Anchor {
     std::shared_ptr<const KeyFrame> keyframe;
+    SE3 T_ka;  // the anchor camera to `keyframe`'s camera
     SE3 T_wc;  // used when there is no keyframe
   };
 
@@ -125,6 +130,8 @@ class DenseMapper {
   void MarkMoving(DenseFrame* frame);
   // Under mutex_.
   std::vector<SE3> AnchorPoses() const;
+  // Hands the anchors of culled keyframes to their live ancestors (under mutex_).
+  void ReleaseCulledLocked();
   void CompactLocked();
 
   CameraOptions camera_;

@@ -1,10 +1,12 @@
 // Global bundle adjustment after a loop correction, in three steps so that the long solve
-// holds no lock: GatherGlobalBundle copies every keyframe and map point into a plain problem
-// (under Map::UpdateMutex(), the map's first keyframe fixed), SolveGlobalBundle runs the
-// bundle adjuster with a sparse Schur solver and an interrupt flag, and MergeGlobalBundle
-// writes the result back (caller pauses local mapping): adjusted keyframes and points take
-// their new values, keyframes created meanwhile follow their spanning-tree parents and points
-// created meanwhile follow their reference keyframes.
+// holds no lock: GatherGlobalBundle copies every keyframe pose and map point position under
+// Map::UpdateMutex() and their observations after it, into a plain problem (the map's first
+// keyframe fixed); SolveGlobalBundle runs the bundle adjuster with a sparse Schur solver and an
+// interrupt flag; MergeGlobalBundle writes the result back under the lock and raises the map's
+// correction epoch (caller pauses local mapping): adjusted keyframes and points take their new
+// values, keyframes created meanwhile follow their spanning-tree parents (or, not yet in the
+// tree, the newest adjusted keyframe), points created meanwhile follow their reference
+// keyframes; normals and distance ranges are updated after the lock.
 #pragma once
 
 #include <atomic>

@@ -160,7 +160,6 @@ void LoopCloser::Process(const std::shared_ptr<KeyFrame>& keyframe) {
     rules.min_covisibility_weight = options_.essential_graph_min_weight;
     rules.pose_graph_iterations = options_.pose_graph_iterations;
     correction = CorrectLoop(*match, map_, matcher_, rules, &loop_edges_);
-    if (correction.applied && hooks_.map_corrected) hooks_.map_corrected();
   }
   if (!correction.applied) {
     spdlog::debug("loop at keyframe {} dropped: its keyframes left the map", keyframe->Id());
@@ -219,7 +218,6 @@ void LoopCloser::GlobalBundleAdjustment() {
   {
     const MappingPause pause(hooks_);
     merge = MergeGlobalBundle(map_, bundle, result);
-    if (hooks_.map_corrected) hooks_.map_corrected();
   }
   const double ms = watch.ElapsedMs();
   Record("global_ba", ms);

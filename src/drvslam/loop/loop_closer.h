@@ -1,13 +1,13 @@
 // LoopCloser: the loop closing thread. Local mapping hands it each keyframe it has finished
 // (through a bounded queue); per keyframe it detects loop candidates (LoopDetector), verifies
 // them geometrically (VerifyLoop) and, for a verified loop, pauses local mapping, corrects the
-// map (CorrectLoop: neighbourhood moved, duplicates fused, essential graph optimized), tells
-// tracking, resumes mapping, and starts a global bundle adjustment on a thread of its own
-// (a newer loop interrupts it; its result is merged with the keyframes created meanwhile).
-// Sequential: every step runs in InsertKeyFrame on the caller's thread, the global bundle
-// adjustment included, deterministically. The pipeline is reached through Hooks, so loop/
-// needs nothing of System. Thread-safety: the public members may be called from any thread;
-// the detector, loop edges and keyframe counter belong to the thread that runs the steps.
+// map (CorrectLoop: neighbourhood moved, duplicates fused, essential graph optimized; tracking
+// learns of it through the map's correction epoch), resumes mapping, and starts a global bundle
+// adjustment on a thread of its own (a newer loop interrupts it; its result is merged with the
+// keyframes created meanwhile). Sequential: every step runs in InsertKeyFrame on the caller's
+// thread, the global bundle adjustment included, deterministically. The pipeline is reached through
+// Hooks, so loop/ needs nothing of System. Thread-safety: the public members may be called from any
+// thread; the detector, loop edges and keyframe counter belong to the thread that runs the steps.
 #pragma once
 
 #include <atomic>
@@ -56,7 +56,6 @@ class LoopCloser {
   struct Hooks {
     std::function<void()> pause_mapping;   // returns once local mapping is between keyframes
     std::function<void()> resume_mapping;  // matches one pause_mapping
-    std::function<void()> map_corrected;   // keyframes moved: tracking re-anchors
   };
 
   // `timings` (may be null) receives "loop_detection" per keyframe, "loop_correction" and

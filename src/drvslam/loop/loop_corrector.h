@@ -1,10 +1,17 @@
 // CorrectLoop: closes a verified loop on the map (ORB-SLAM2's CorrectLoop with a rigid
-// transform). The current keyframe's covisible neighbourhood is moved with it onto the loop
-// side, together with the map points it sees; the loop's matched points replace their
-// duplicates and the loop neighbourhood's points are fused into the moved keyframes; the new
-// covisibility links become loop edges; then the essential graph is optimized and every map
-// point follows its keyframe. The caller pauses local mapping; the map is changed under
-// Map::UpdateMutex(), so tracking sees either the old or the corrected map.
+// transform), in three steps so that tracking never waits for the pose-graph solve:
+//  1. under Map::UpdateMutex(): the current keyframe's covisible neighbourhood (and keyframes
+//     made after it, not yet connected) is moved with it onto the loop side, together with the
+//     map points it sees; the loop's matched points replace their duplicates and the loop
+//     neighbourhood's points are fused into the moved keyframes; the new covisibility links
+//     become loop edges;
+//  2. without the lock: the essential graph is built and optimized;
+//  3. under the lock: every keyframe takes its optimized pose (keyframes outside the graph, made
+//     meanwhile, keep their pose relative to the current keyframe) and every map point follows
+//     its keyframe; normals and distance ranges are updated after the lock.
+// Steps 1 and 3 each raise the map's correction epoch, so tracking re-poses its last frame
+// before the next frame. The caller pauses local mapping and stops global bundle adjustment for
+// the whole call.
 #pragma once
 
 #include "drvslam/loop/essential_graph.h"

@@ -68,7 +68,7 @@ void LocalMapper::InsertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
   // Raised before and after the push: a push that waits for room still stops the BA at once,
   // and a BA that cleared the flag just before the push still sees it.
   abort_ba_ = true;
-  if (!queue_.Push(keyframe)) --pending_;
+  if (!queue_.Push({keyframe, reset_epoch_.load()})) --pending_;
   abort_ba_ = true;
 }
 
@@ -92,6 +92,12 @@ void LocalMapper::RequestReset() {
   ++reset_epoch_;
   abort_ba_ = true;
   while (queue_.TryPop()) --pending_;
+}
+
+void LocalMapper::WaitUntilIdle() {
+  if (!threaded_) return;
+  std::unique_lock<std::mutex> lock(pause_mutex_);
+  pause_changed_.wait(lock, [this] { return !busy_; });
 }
 
 LocalMappingStats LocalMapper::Stats() const {
@@ -118,17 +124,24 @@ void LocalMapper::Resume() {
 
 void LocalMapper::Run() {
   LowerCurrentThreadPriority(BackgroundStage::kLocalMapping);
-  while (auto keyframe = queue_.Pop()) {
+  while (auto queued = queue_.Pop()) {
+    const std::shared_ptr<KeyFrame>& keyframe = queued->keyframe;
     {
       std::unique_lock<std::mutex> lock(pause_mutex_);
       pause_changed_.wait(lock, [this] { return pause_requests_ == 0; });
+      // Checked where busy_ is raised: a reset either comes first (and the keyframe of the old
+      // map is dropped) or waits for this keyframe (WaitUntilIdle).
+      if (queued->epoch != reset_epoch_.load()) {
+        --pending_;
+        continue;
+      }
       busy_ = true;
     }
     try {
-      Process(*keyframe);
+      Process(keyframe);
     } catch (const std::exception& e) {
       // The thread must survive: the keyframe keeps whatever steps completed.
-      spdlog::error("local mapping: keyframe {}: {}", (*keyframe)->Id(), e.what());
+      spdlog::error("local mapping: keyframe {}: {}", keyframe->Id(), e.what());
     }
     {
       std::lock_guard<std::mutex> lock(pause_mutex_);
@@ -137,7 +150,7 @@ void LocalMapper::Run() {
     }
     // Outside the busy section: the sink may block on a full loop queue while loop closing
     // waits for this thread to pause.
-    if (sink_ && !(*keyframe)->IsBad()) sink_(*keyframe);
+    if (sink_ && !keyframe->IsBad()) sink_(keyframe);
     --pending_;
   }
 }

@@ -68,6 +68,7 @@ class LocalMapper final : public MappingStatus {
   // step creates meanwhile may still reach the cleared map; they only see old keyframes, so
   // tracking never matches them.
   void RequestReset() override;
+  void WaitUntilIdle() override;
 
   LocalMappingStats Stats() const;
 
@@ -97,7 +98,13 @@ class LocalMapper final : public MappingStatus {
   StageTimings* const timings_;
   OrbMatcher matcher_;
 
-  BoundedQueue<std::shared_ptr<KeyFrame>> queue_;
+  // A keyframe with the reset epoch it was queued in: one queued before a reset is dropped,
+  // even when the thread had already taken it off the queue.
+  struct Queued {
+    std::shared_ptr<KeyFrame> keyframe;
+    long epoch = 0;
+  };
+  BoundedQueue<Queued> queue_;
   std::atomic<int> pending_{0};  // queued or being processed
   std::atomic<bool> abort_ba_{false};
   std::atomic<long> reset_epoch_{0};

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <mutex>
 
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/pose_observations.h"
@@ -48,8 +49,14 @@ Tracker::Tracker(Map& map, const TrackerOptions& options, double fps)
 }
 
 TrackingResult Tracker::Track(Frame frame) {
+  ApplyPendingReset();
   current_.emplace(std::move(frame));
   TrackingResult result;
+  const long epoch = map_.CorrectionEpoch();
+  if (epoch != seen_correction_epoch_) {
+    ReanchorLastFrame();
+    seen_correction_epoch_ = epoch;
+  }
 
   if (state_ == TrackingState::kNotInitialized) {
     if (Initialize()) {
@@ -67,7 +74,6 @@ TrackingResult Tracker::Track(Frame frame) {
   }
 
   CheckReplacedInLastFrame();
-  if (map_corrected_.exchange(false)) ReanchorLastFrame();
   bool ok = false;
   bool relocalized = false;
   if (state_ == TrackingState::kOk) {
@@ -94,7 +100,8 @@ TrackingResult Tracker::Track(Frame frame) {
     recorder_.AddLost(current_->Timestamp());
     velocity_.reset();
     if (options_.reset_when_lost) {
-      ResetMap();
+      // Applied outside the caller's update lock (ApplyPendingReset), before the next frame.
+      reset_pending_ = true;
       state_ = TrackingState::kNotInitialized;
     } else {
       state_ = TrackingState::kLost;
@@ -332,14 +339,24 @@ void Tracker::ReanchorLastFrame() {
   last_frame_->SetPose(T_cr * reference->Pose());
 }
 
-void Tracker::ResetMap() {
+void Tracker::ApplyPendingReset() {
+  if (!reset_pending_) return;
+  reset_pending_ = false;
   spdlog::warn("tracking lost: starting a new map");
-  if (mapping_ != nullptr) mapping_->RequestReset();
+  // Local mapping drops what is queued and finishes the keyframe in flight before the map goes:
+  // nothing of the old map is written into the new one.
+  if (mapping_ != nullptr) {
+    mapping_->RequestReset();
+    mapping_->WaitUntilIdle();
+  }
+  std::lock_guard<std::mutex> lock(map_.UpdateMutex());
   if (place_recognition_ != nullptr) place_recognition_->Reset();
   map_.Clear();
+  recorder_.StartNewMap();
   reference_keyframe_.reset();
   last_keyframe_.reset();
   last_frame_.reset();
+  velocity_.reset();
 }
 
 }  // namespace drvslam

@@ -4,7 +4,6 @@
 // the map it shares is guarded by the Map/KeyFrame/MapPoint mutexes.
 #pragma once
 
-#include <atomic>
 #include <memory>
 #include <optional>
 
@@ -33,7 +32,19 @@ class Tracker {
   // fps sets the longest gap between keyframes when the options leave it at 0.
   Tracker(Map& map, const TrackerOptions& options, double fps);
 
+  // With other threads running, the caller holds map.UpdateMutex(): a frame is then tracked
+  // against one state of the map, and a correction raised since the last frame (the map's
+  // correction epoch) first moves the last frame with its reference keyframe, so the motion
+  // model predicts in the corrected map.
   TrackingResult Track(Frame frame);
+
+  // Tracking.resetWhenLost: a lost frame asks for a new map. The reset first lets local mapping
+  // finish the keyframe in flight (dropping the queued ones), then clears the map under
+  // map.UpdateMutex() and starts a new trajectory segment (TrajectoryRecorder::StartNewMap).
+  // A caller that holds map.UpdateMutex() around Track calls this after releasing it; Track
+  // calls it itself otherwise. Does nothing when no reset is pending.
+  void ApplyPendingReset();
+  bool ResetPending() const { return reset_pending_; }
 
   // Local mapping, consulted for keyframe decisions and told about map resets (may be null:
   // then mapping counts as always idle). Not owned; set before the first Track.
@@ -60,11 +71,6 @@ class Tracker {
   // the retry against the last reference keyframe.
   int Relocalizations() const { return relocalizations_; }
 
-  // Loop closing moved keyframes: before the next frame, the last frame is re-anchored to its
-  // reference keyframe's corrected pose, so the motion model predicts in the corrected map.
-  // Thread-safe (callable from the loop closing thread).
-  void NotifyMapCorrected() { map_corrected_ = true; }
-
  private:
   bool Initialize();
   bool TrackWithMotionModel();
@@ -82,9 +88,8 @@ class Tracker {
   bool RecentlyRelocalized() const;
   // Local mapping may have replaced (fused) or removed points the last frame still holds.
   void CheckReplacedInLastFrame();
-  // Moves the last frame with its reference keyframe (after NotifyMapCorrected).
+  // Moves the last frame with its reference keyframe (after a map correction).
   void ReanchorLastFrame();
-  void ResetMap();
 
   Map& map_;
   MappingStatus* mapping_ = nullptr;
@@ -106,8 +111,9 @@ class Tracker {
   int relocalizations_ = 0;
   long last_relocalization_frame_id_ = -1;
   TrajectoryRecorder recorder_;
-  std::atomic<bool> map_corrected_{false};
-  SE3 last_frame_T_cr_;  // the last frame relative to its reference keyframe
+  bool reset_pending_ = false;
+  long seen_correction_epoch_ = 0;  // the map's correction epoch the last frame is posed in
+  SE3 last_frame_T_cr_;             // the last frame relative to its reference keyframe
   // The last keyframe decision's evidence (for KeyFrameLikely); reset when a keyframe is made.
   mutable std::optional<KeyFrameEvidence> last_evidence_;
 };

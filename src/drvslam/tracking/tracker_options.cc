@@ -18,7 +18,8 @@ const OptionTable<TrackerOptions>& TrackerOptionTable() {
         .Int("minInliers", &T::min_inliers, Bounds::AtLeast(6),
              "Inliers after local-map tracking for a frame to count as tracked.")
         .Bool("resetWhenLost", &T::reset_when_lost,
-              "When lost: 1 starts a new map, 0 keeps trying to recover.")
+              "When lost: 1 starts a new map (the saved trajectory then holds the final "
+              "map's frames only), 0 keeps trying to recover.")
         .Bool("bowReferenceMatching", &T::bow_reference_matching,
               "Match the reference keyframe by bag of words (1) or brute force (0).");
     return t;

@@ -5,14 +5,22 @@ namespace drvslam {
 void TrajectoryRecorder::AddTracked(double timestamp, const SE3& T_cw,
                                     const std::shared_ptr<KeyFrame>& reference) {
   std::lock_guard<std::mutex> lock(mutex_);
-  entries_.push_back({timestamp, true, T_cw * reference->InversePose(), reference->Id()});
+  entries_.push_back({timestamp, true, T_cw * reference->InversePose(), reference->Id(), map_});
   references_.emplace(reference->Id(), reference);
   if (entries_.size() % kFoldEvery == 0) FoldRemovedReferences();
 }
 
 void TrajectoryRecorder::AddLost(double timestamp) {
   std::lock_guard<std::mutex> lock(mutex_);
-  entries_.push_back({timestamp, false, SE3(), -1});
+  entries_.push_back({timestamp, false, SE3(), -1, map_});
+}
+
+void TrajectoryRecorder::StartNewMap() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++map_;
+  // The old map's keyframes are no longer needed to resolve anything.
+  references_.clear();
+  removed_.clear();
 }
 
 void TrajectoryRecorder::FoldRemovedReferences() {
@@ -62,8 +70,20 @@ std::size_t TrajectoryRecorder::FrameCount() const {
 std::size_t TrajectoryRecorder::TrackedCount() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::size_t tracked = 0;
-  for (const Entry& entry : entries_) tracked += entry.tracked ? 1 : 0;
+  for (const Entry& entry : entries_) tracked += entry.tracked && entry.map == map_ ? 1 : 0;
   return tracked;
+}
+
+std::size_t TrajectoryRecorder::DiscardedCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::size_t discarded = 0;
+  for (const Entry& entry : entries_) discarded += entry.tracked && entry.map != map_ ? 1 : 0;
+  return discarded;
+}
+
+int TrajectoryRecorder::MapResets() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return map_;
 }
 
 std::size_t TrajectoryRecorder::LostAfterInitialization() const {
@@ -81,7 +101,7 @@ drvslam::Trajectory TrajectoryRecorder::CameraTrajectory() const {
   std::lock_guard<std::mutex> lock(mutex_);
   drvslam::Trajectory trajectory;
   for (const Entry& entry : entries_) {
-    if (!entry.tracked) continue;
+    if (!entry.tracked || entry.map != map_) continue;
     const SE3 T_cw = Resolve(entry.T_cr, entry.reference_id);
     trajectory.push_back({entry.timestamp, T_cw.Inverse()});
   }

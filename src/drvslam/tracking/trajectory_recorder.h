@@ -3,6 +3,9 @@
 // Frames name their reference by id; the recorder holds each reference keyframe once, and a
 // removed (bad) one only until its link to its parent (parent id, relative pose) is noted, so
 // history costs a few numbers per frame and removed keyframes are freed.
+// A map reset (Tracking.resetWhenLost) starts a new map with its own world frame: the
+// trajectory then holds the frames of the final map only (as ORB-SLAM2 does), and the frames
+// tracked in earlier maps are counted as discarded.
 // Thread-safety: guarded by mutex_ (tracking appends, the saver reads).
 #pragma once
 
@@ -21,14 +24,21 @@ class TrajectoryRecorder {
  public:
   void AddTracked(double timestamp, const SE3& T_cw, const std::shared_ptr<KeyFrame>& reference);
   void AddLost(double timestamp);
+  // The map was cleared: frames recorded so far belong to a world frame that is gone.
+  void StartNewMap();
 
   std::size_t FrameCount() const;
+  // Frames tracked in the final map (those CameraTrajectory returns).
   std::size_t TrackedCount() const;
+  // Frames tracked in maps discarded by a reset.
+  std::size_t DiscardedCount() const;
+  int MapResets() const;
   // Frames not tracked after the first tracked one: frames lost, as opposed to frames before
   // the map could be initialized.
   std::size_t LostAfterInitialization() const;
-  // Camera-to-world poses of the tracked frames, through their reference keyframes' current
-  // poses (a reference keyframe removed since is replaced by its spanning-tree parent).
+  // Camera-to-world poses of the frames tracked in the final map, through their reference
+  // keyframes' current poses (a reference keyframe removed since is replaced by its spanning-tree
+  // parent).
   drvslam::Trajectory CameraTrajectory() const;
 
  private:
@@ -37,6 +47,7 @@ class TrajectoryRecorder {
     bool tracked;
     SE3 T_cr;           // frame relative to its reference keyframe
     long reference_id;  // -1 when not tracked
+    int map;            // how many resets came before this frame
   };
   // A removed keyframe: its parent and its pose relative to it when it was removed.
   struct Link {
@@ -56,6 +67,7 @@ class TrajectoryRecorder {
   std::vector<Entry> entries_;
   std::map<long, std::shared_ptr<KeyFrame>> references_;  // live (or not yet folded) ones
   std::map<long, Link> removed_;
+  int map_ = 0;  // resets so far
 };
 
 // Camera-to-world poses of the map's keyframes (not removed), in id order.

@@ -20,6 +20,7 @@
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/settings_registry.h"
 #include "drvslam/system_options.h"
+#include "drvslam/tools/runner/frame_log.h"
 #include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {
@@ -163,8 +164,21 @@ RunSummary RunSequence(const RunOptions& options,
   if (options.max_frames > 0 && options.max_frames < total) total = options.max_frames;
   summary.sequence_frames = total;
   summary.paced = paced;
+  std::optional<FrameLog> frame_log;
+  if (!options.frame_log.empty()) frame_log.emplace(options.frame_log);
   const auto track = [&](const RgbdFrame& frame) {
-    system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
+    const Clock::time_point track_start = Clock::now();
+    const TrackResult result = system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
+    if (frame_log) {
+      FrameLogLine line;
+      line.frame = frame.index;
+      line.timestamp = frame.timestamp;
+      line.track_ms = std::chrono::duration<double, std::milli>(Clock::now() - track_start).count();
+      line.tracked = result.pose_valid;
+      line.keyframes = system.GetMap().KeyFrameCount();
+      line.map_points = system.GetMap().MapPointCount();
+      frame_log->Append(line);
+    }
     if (motion_truth && system.Dynamic()) {
       motion_truth->Add(system.Dynamic()->LastReport(), frame.bgr.size());
       summary.motion_states = motion_truth->Scores();
@@ -262,6 +276,8 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["map_points"] = s.map_points;
   json["reference_fallbacks"] = s.reference_fallbacks;
   json["frames_lost"] = s.frames_lost;
+  json["map_resets"] = s.map_resets;
+  json["frames_discarded"] = s.frames_discarded;
   json["frames_skipped"] = summary.frames_skipped;
   json["frames_skipped_loading"] = summary.frames_skipped_loading;
   json["frames_rejected"] = summary.frames_rejected;

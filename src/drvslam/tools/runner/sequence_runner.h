@@ -36,6 +36,8 @@ struct RunOptions {
   // --strict-settings: an unknown key in one of drvslam's settings sections is an error, not a
   // warning.
   bool strict_settings = false;
+  // --frame-log FILE: one line per frame (tools/runner/frame_log.h); empty: none.
+  std::string frame_log;
 };
 
 // A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
@@ -94,8 +96,8 @@ RunSummary RunSequence(const RunOptions& options,
 // Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
 // fps (wall-clock throughput of the whole run: frames / wall_s, see RunSummary), wall_s (the
 // run's wall time in seconds, frame loop and shutdown drain, writing the outputs excluded),
-// tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost,
-// frames_skipped, frames_skipped_loading, max_arrival_lag_ms, frames_rejected,
+// tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost, map_resets,
+// frames_discarded, frames_skipped, frames_skipped_loading, max_arrival_lag_ms, frames_rejected,
 // frames_rejected_by_fault.{fault: count}, frames_rejected_examples[{frame (null for a list
 // entry), fault, file, message}], segmenter.{label, oracle},
 // relocalization.{relocalizations,attempts,vocabulary_load_ms},
