@@ -111,6 +111,7 @@ class DenseMapper {
   struct Anchor {
     std::shared_ptr<const KeyFrame> keyframe;
     SE3 T_wc;  // used when there is no keyframe
+    double timestamp = 0.0;
   };
 
   void Run();
@@ -124,6 +125,7 @@ class DenseMapper {
   void MarkMoving(DenseFrame* frame);
   // Under mutex_.
   std::vector<SE3> AnchorPoses() const;
+  std::vector<double> AnchorTimes() const;
   void CompactLocked();
 
   CameraOptions camera_;
