@@ -39,8 +39,8 @@ const OptionTable<DenseMapOptions>& DenseMapOptionTable() {
         .Int("minViews", &D::min_views, Bounds::In(1, 1000),
              "Keyframes that must see a point in a voxel before it is exported.")
         .Real("minViewSpan", &D::min_view_span, Bounds::In(0, 60).Note("seconds"),
-              "Those views must span this long, first to latest (0 = any): a person missed by "
-              "the detector for a moment plants nothing.")
+              "A voxel's views must span this long, first to latest, before it is exported (0 = "
+              "any): a person the detector misses for a moment plants nothing.")
         .Int("evidenceMax", &D::evidence_max, Bounds::In(1, 127),
              "Voxel evidence is clamped to +-this, so a departed object is carved in bounded "
              "views.")
