@@ -111,6 +111,10 @@ const bool kRegistered = RegisterCommand("dense-eval", [](CLI::App& root) {
   cmd->add_option("--octomap", o.octomap,
                   "the run's dense_map.bt: score its occupied cells as well (aligned with "
                   "--trajectory)");
+  cmd->add_option("--ghosts", o.ghosts_csv,
+                  "write every ghost point and octomap cell in swept space as CSV (position in "
+                  "the ground-truth frame, label, distance to the static scene, first frame an "
+                  "actor was there)");
   cmd->add_option("--json", args->json_path, "write the numbers as JSON");
   cmd->callback([args] { RunDenseEval(*args); });
 });

@@ -27,13 +27,14 @@ const synth::SynthSequence& Sequence() {
 }
 
 // `evidence` off: every single view plants its points and nothing is carved (the map before
-// multi-view confirmation and free-space evidence).
+// multi-view confirmation over time and free-space evidence).
 DenseTruthScores MapAndScore(bool removal, bool evidence, DenseMapStats* stats) {
   const synth::SynthSequence& sequence = Sequence();
   DenseMapOptions options;
   options.remove_dynamic = removal;
   if (!evidence) {
     options.min_views = 1;
+    options.min_view_span = 0.0;
     options.carve = false;
   }
   DenseMapper mapper(sequence.Camera(), options, /*sequential=*/true);

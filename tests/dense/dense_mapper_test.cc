@@ -50,6 +50,7 @@ TEST(DenseMapper, KeyObjectsAreDenserThanTheBackground) {
   DenseMapOptions options;
   options.enhancement_frames = 3;  // one frame before the keyframe, two after it
   options.min_views = 1;           // one keyframe: its background counts
+  options.min_view_span = 0.0;     // one view spans less than 1 s
   DenseMapper mapper(camera, options, /*sequential=*/true);
   mapper.AddFrame(BookFrame(camera, 0, 0.0));
   mapper.AddKeyFrame(BookFrame(camera, 1, 0.0013), nullptr);
@@ -147,6 +148,7 @@ TEST(DenseMapper, PointsFollowTheirKeyFrameWhenItsPoseIsCorrected) {
   const CameraOptions camera = SmallCamera();
   DenseMapOptions options;
   options.min_views = 1;
+  options.min_view_span = 0.0;  // one view spans less than 1 s
   options.enhancement_frames = 0;
   DenseMapper mapper(camera, options, true);
   const std::shared_ptr<KeyFrame> keyframe = MakeKeyFrame(camera, SE3(), 0);
@@ -171,7 +173,8 @@ TEST(DenseMapper, AnObjectThatStartsMovingLeavesNoGhost) {
   for (const bool sticky : {true, false}) {
     DenseMapOptions options;
     options.sticky_moving = sticky;
-    options.min_views = 1;  // the still person is mapped from one keyframe
+    options.min_views = 1;        // the still person is mapped from one keyframe
+    options.min_view_span = 0.0;  // one view spans less than 1 s
     options.enhancement_frames = 0;
     DenseMapper mapper(camera, options, true);
     DenseFrame still = PlaneFrame(camera, 2.0f, SE3(), 0);
@@ -200,6 +203,7 @@ TEST(DenseMapper, ResetDropsTheMap) {
   const CameraOptions camera = SmallCamera();
   DenseMapOptions options;
   options.min_views = 1;
+  options.min_view_span = 0.0;  // one view spans less than 1 s
   DenseMapper mapper(camera, options, false);
   mapper.AddKeyFrame(PlaneFrame(camera, 2.0f), nullptr);
   mapper.Reset();

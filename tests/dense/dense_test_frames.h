@@ -19,12 +19,17 @@ inline CameraOptions SmallCamera() {
   return camera;
 }
 
+// Frames are this far apart in time: three keyframes span DenseMap.minViewSpan's default
+// (1 s), so three views confirm a voxel as before that rule; tests of the time span set
+// timestamps themselves.
+constexpr double kFrameSeconds = 0.5;
+
 // A plane at `depth` metres filling the image, grey colour `grey`.
 inline DenseFrame PlaneFrame(const CameraOptions& camera, float depth, const SE3& T_wc = SE3(),
                              long id = 0) {
   DenseFrame frame;
   frame.frame_id = id;
-  frame.timestamp = 0.1 * static_cast<double>(id);
+  frame.timestamp = kFrameSeconds * static_cast<double>(id);
   frame.T_wc = T_wc;
   frame.bgr = cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(10, 20, 30));
   frame.depth = cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(depth));

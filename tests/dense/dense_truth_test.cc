@@ -64,6 +64,28 @@ TEST(ScoreDenseCloud, CountsGhostsAndDistances) {
   EXPECT_EQ(scores.background_points, cloud.size() - 1);
 }
 
+// dense-eval --ghosts: each ghost with its index, distance to the static scene and the first
+// swept triangle near it (its frame says when the actor was there).
+TEST(ScoreDenseCloud, ListsEachGhostWithTheFirstActorTriangleNearIt) {
+  // The actor's face at x = 1 in "frame 0" (triangles 0, 1) and at x = 2 in "frame 1" (2, 3).
+  synth::TriangleList swept;
+  for (const double x : {1.0, 2.0}) {
+    swept.push_back(MakeTriangle({x, -0.5, 0}, {x, 0.5, 0}, {x, 0.5, 1.8}));
+    swept.push_back(MakeTriangle({x, -0.5, 0}, {x, 0.5, 1.8}, {x, -0.5, 1.8}));
+  }
+  const DenseCloud cloud = {At(0.0, 0.0, 0.01), At(2.01, 0.2, 1.0), At(1.0, -0.2, 1.5)};
+  std::vector<GhostPoint> ghosts;
+  const DenseTruthScores scores =
+      ScoreDenseCloud(cloud, Floor(), swept, {}, DenseTruthOptions(), &ghosts);
+  ASSERT_EQ(scores.ghosts, 2u);
+  ASSERT_EQ(ghosts.size(), 2u);
+  EXPECT_EQ(ghosts[0].index, 1u);
+  EXPECT_GE(ghosts[0].actor_triangle, 2u);  // frame 1's face
+  EXPECT_NEAR(ghosts[0].static_distance, DenseTruthOptions().max_distance, 1e-9);
+  EXPECT_EQ(ghosts[1].index, 2u);
+  EXPECT_LE(ghosts[1].actor_triangle, 1u);  // frame 0's face
+}
+
 // An empty map has no ghost share or distance to score: undefined (null), not a perfect 0.
 TEST(ScoreDenseCloud, EmptyCloudScoresAreUndefined) {
   const DenseTruthScores scores = ScoreDenseCloud({}, Floor(), {}, {}, DenseTruthOptions());

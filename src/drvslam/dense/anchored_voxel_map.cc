@@ -50,8 +50,17 @@ std::size_t AnchoredVoxelMap::Bytes() const {
          index_.bucket_count() * sizeof(void*);
 }
 
-bool AnchoredVoxelMap::Confirmed(const Stored& stored) const {
-  return stored.views >= evidence_.min_views && stored.evidence > 0;
+bool AnchoredVoxelMap::Confirmed(const Stored& stored, const std::vector<double>& times) const {
+  if (stored.views < evidence_.min_views || stored.evidence <= 0) return false;
+  if (evidence_.min_span <= 0.0) return true;
+  const std::size_t first = static_cast<std::size_t>(stored.anchor);
+  const std::size_t latest = std::min(first + stored.span, times.size() - 1);
+  return times[latest] - times[first] >= evidence_.min_span;
+}
+
+uint8_t AnchoredVoxelMap::SpanTo(const Stored& stored, int anchor) {
+  const int span = std::max<int>(stored.span, anchor - stored.anchor);
+  return static_cast<uint8_t>(std::min(span, static_cast<int>(UINT8_MAX)));
 }
 
 void AnchoredVoxelMap::Refine(Stored* stored, const Eigen::Vector3f& position_in_anchor,
@@ -94,7 +103,8 @@ std::size_t AnchoredVoxelMap::Insert(const DenseCloud& local, int anchor,
     Stored& stored = points_[it->second];
     Refine(&stored, from_world[stored.anchor] * world, point, ViewWeight(point.position));
     if (stored.views < UINT16_MAX) ++stored.views;
-    stored.evidence = static_cast<int16_t>(std::min<int>(stored.evidence + 1, max));
+    stored.evidence = static_cast<int8_t>(std::min<int>(stored.evidence + 1, max));
+    stored.span = SpanTo(stored, anchor);
   }
   return added;
 }
@@ -158,6 +168,8 @@ std::size_t AnchoredVoxelMap::Rekey(const std::vector<SE3>& T_wa) {
     Refine(&into, from_world[into.anchor] * world, stored.point, stored.weight);
     into.views = std::max(into.views, stored.views);
     into.evidence = std::max(into.evidence, stored.evidence);
+    // Measured from into's first view: an earlier first view of `stored` is not counted.
+    into.span = SpanTo(into, stored.anchor + stored.span);
   }
   const std::size_t merged = points_.size() - kept.size();
   kept.shrink_to_fit();
@@ -166,14 +178,15 @@ std::size_t AnchoredVoxelMap::Rekey(const std::vector<SE3>& T_wa) {
   return merged;
 }
 
-DenseCloud AnchoredVoxelMap::World(const std::vector<SE3>& T_wa, const std::set<int>& moving_tracks,
+DenseCloud AnchoredVoxelMap::World(const std::vector<SE3>& T_wa, const std::vector<double>& times,
+                                   const std::set<int>& moving_tracks,
                                    std::vector<int>* anchors) const {
   const std::vector<Rigid> to_world = Rigids(T_wa, false);
   DenseCloud world;
   world.reserve(points_.size());
   if (anchors != nullptr) anchors->clear();
   for (const Stored& stored : points_) {
-    if (!Confirmed(stored)) continue;
+    if (!Confirmed(stored, times)) continue;
     if (stored.point.track >= 0 && moving_tracks.count(stored.point.track)) continue;
     DensePoint p = stored.point;
     p.position = to_world[stored.anchor] * p.position;

@@ -7,8 +7,9 @@
 // A voxel's point is evidence, not a first arrival: every view refines it (a mean weighted by
 // the view's depth noise, so closer views count more), every view adds to its evidence and
 // every later view that sees through it takes from it (Carve). Only voxels seen by min_views
-// views with positive evidence are exported, so one bad frame cannot plant a point and an
-// object that left is carved away.
+// views, spread over at least min_span seconds, with positive evidence are exported, so one bad
+// frame - or a person the detector misses for a moment - cannot plant a point, and an object
+// that left is carved away.
 // Not thread-safe: DenseMapper guards it.
 #pragma once
 
@@ -27,7 +28,9 @@ namespace drvslam {
 
 struct VoxelEvidenceOptions {
   int min_views = 1;     // views before a voxel is exported
-  int evidence_max = 4;  // evidence is clamped to [-evidence_max, evidence_max]
+  int evidence_max = 4;  // evidence is clamped to [-evidence_max, evidence_max], at most 127
+  // Seconds between a voxel's first and latest view before it is exported (0 = any).
+  double min_span = 0.0;
 };
 
 // A depth image that votes on the map: a voxel whose projection has depth clearly behind it
@@ -64,10 +67,10 @@ class AnchoredVoxelMap {
   std::size_t Rekey(const std::vector<SE3>& T_wa);
 
   // Confirmed world points through the current poses; points on the objects in `moving_tracks`
-  // are left out (they turned out to move after they were mapped). `anchors` (may be null)
-  // receives each point's anchor.
-  DenseCloud World(const std::vector<SE3>& T_wa, const std::set<int>& moving_tracks,
-                   std::vector<int>* anchors = nullptr) const;
+  // are left out (they turned out to move after they were mapped). `times` holds each anchor's
+  // time stamp (seconds; for min_span). `anchors` (may be null) receives each point's anchor.
+  DenseCloud World(const std::vector<SE3>& T_wa, const std::vector<double>& times,
+                   const std::set<int>& moving_tracks, std::vector<int>* anchors = nullptr) const;
 
   void Clear();
 
@@ -75,12 +78,17 @@ class AnchoredVoxelMap {
   struct Stored {
     DensePoint point;  // position in the anchor's frame
     int anchor = 0;
-    float weight = 0.0f;   // sum of the views' weights
-    uint16_t views = 0;    // saturating
-    int16_t evidence = 0;  // views minus seen-through votes, clamped
+    float weight = 0.0f;  // sum of the views' weights
+    uint16_t views = 0;   // saturating
+    int8_t evidence = 0;  // views minus seen-through votes, clamped
+    // Anchors from the first view (`anchor`) to the latest, saturating: the latest view is at
+    // least this far on, so a saturated span still measures a lower bound of the time span.
+    uint8_t span = 0;
   };
 
-  bool Confirmed(const Stored& stored) const;
+  bool Confirmed(const Stored& stored, const std::vector<double>& times) const;
+  // `stored`'s span once a view from `anchor` (or a merged one reaching it) is folded in.
+  static uint8_t SpanTo(const Stored& stored, int anchor);
   // Folds `other` (another anchor's point, seen with `weight`) into `stored`.
   static void Refine(Stored* stored, const Eigen::Vector3f& position_in_anchor,
                      const DensePoint& other, float weight);

@@ -42,8 +42,8 @@ DenseMapper::DenseMapper(const CameraOptions& camera, const DenseMapOptions& opt
       rays_(MakePixelRays(camera)),
       frames_before_(options.enhancement_frames / 2),
       frames_after_(options.enhancement_frames - options.enhancement_frames / 2),
-      coarse_(options.leaf_size, {options.min_views, options.evidence_max}),
-      fine_(options.object_leaf_size, {1, options.evidence_max}),
+      coarse_(options.leaf_size, {options.min_views, options.evidence_max, options.min_view_span}),
+      fine_(options.object_leaf_size, {1, options.evidence_max, 0.0}),
       queue_(static_cast<std::size_t>(never_block ? options.live_queue_capacity
                                                   : options.queue_capacity)) {
   if (!sequential_) worker_ = std::thread([this] { Run(); });
@@ -283,7 +283,7 @@ void DenseMapper::Integrate(KeyFrameJob job) {
     stats_.carving_votes += coarse_.Carve(view, poses) + fine_.Carve(view, poses);
   }
   const int anchor = static_cast<int>(anchors_.size());
-  anchors_.push_back({job.keyframe, SE3::Identity(), frame.T_wc});
+  anchors_.push_back({job.keyframe, SE3::Identity(), frame.T_wc, frame.timestamp});
   poses.push_back(T_wa);
   coarse_.Insert(coarse, anchor, poses);
   fine_.Insert(fine, anchor, poses);
@@ -318,6 +318,13 @@ void DenseMapper::ReleaseCulledLocked() {
   }
 }
 
+std::vector<double> DenseMapper::AnchorTimes() const {
+  std::vector<double> times;
+  times.reserve(anchors_.size());
+  for (const Anchor& anchor : anchors_) times.push_back(anchor.timestamp);
+  return times;
+}
+
 void DenseMapper::CompactLocked() {
   const std::vector<SE3> poses = AnchorPoses();
   coarse_.Rekey(poses);
@@ -330,6 +337,7 @@ DenseCloud DenseMapper::Assemble() { return AssembleRays().cloud; }
 DenseMapRays DenseMapper::AssembleRays() {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::vector<SE3> poses = AnchorPoses();
+  const std::vector<double> times = AnchorTimes();
   coarse_.Rekey(poses);
   fine_.Rekey(poses);
   since_compaction_ = 0;
@@ -340,11 +348,11 @@ DenseMapRays DenseMapper::AssembleRays() {
   }
   DenseMapRays rays;
   std::vector<int> coarse_anchors;
-  const DenseCloud coarse = coarse_.World(poses, moving, &coarse_anchors);
+  const DenseCloud coarse = coarse_.World(poses, times, moving, &coarse_anchors);
   const std::vector<std::size_t> kept =
       ConnectedPointIndices(coarse, options_.leaf_size, options_.min_neighbours);
   std::vector<int> object_anchors;
-  const DenseCloud objects = fine_.World(poses, moving, &object_anchors);
+  const DenseCloud objects = fine_.World(poses, times, moving, &object_anchors);
   rays.cloud.reserve(kept.size() + objects.size());
   rays.origin_of_point.reserve(kept.size() + objects.size());
   for (const std::size_t i : kept) {

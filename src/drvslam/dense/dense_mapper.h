@@ -117,6 +117,7 @@ class DenseMapper {
     std::shared_ptr<const KeyFrame> keyframe;
     SE3 T_ka;  // the anchor camera to `keyframe`'s camera
     SE3 T_wc;  // used when there is no keyframe
+    double timestamp = 0.0;
   };
 
   void Run();
@@ -132,6 +133,7 @@ class DenseMapper {
   std::vector<SE3> AnchorPoses() const;
   // Hands the anchors of culled keyframes to their live ancestors (under mutex_).
   void ReleaseCulledLocked();
+  std::vector<double> AnchorTimes() const;
   void CompactLocked();
 
   CameraOptions camera_;

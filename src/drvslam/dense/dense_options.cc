@@ -38,7 +38,10 @@ const OptionTable<DenseMapOptions>& DenseMapOptionTable() {
               "A depth step to a 4-neighbour above this share of the depth drops the pixel.")
         .Int("minViews", &D::min_views, Bounds::In(1, 1000),
              "Keyframes that must see a point in a voxel before it is exported.")
-        .Int("evidenceMax", &D::evidence_max, Bounds::In(1, 1000),
+        .Real("minViewSpan", &D::min_view_span, Bounds::In(0, 60).Note("seconds"),
+              "A voxel's views must span this long, first to latest, before it is exported (0 = "
+              "any): a person the detector misses for a moment plants nothing.")
+        .Int("evidenceMax", &D::evidence_max, Bounds::In(1, 127),
              "Voxel evidence is clamped to +-this, so a departed object is carved in bounded "
              "views.")
         .Bool("carve", &D::carve, "Keyframes seeing clearly behind a voxel take evidence away.")

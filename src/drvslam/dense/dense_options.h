@@ -48,6 +48,12 @@ struct DenseMapOptions {
   // evidence <= 0 are not exported. The key-object map needs one view (it is enhanced from
   // several frames) but is carved too.
   int min_views = 3;
+  // ... and only once those views span at least min_view_span seconds (first to latest view;
+  // 0 = any span): a person who stands still for a moment, or whom the detector misses for a
+  // few frames, is seen by several keyframes within a second and plants nothing; one who stays
+  // longer is carved away by the views after leaving. Keyframes come fast when people move, so
+  // min_views alone does not span much time.
+  double min_view_span = 1.0;
   // A keyframe point that a neighbouring frame sees at its depth inside a left-out object's
   // mask is dropped: a detection missed in the keyframe alone plants nothing.
   bool neighbour_veto = true;

@@ -3,6 +3,7 @@
 #include <octomap/OcTree.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "drvslam/core/error.h"
 #include "drvslam/core/timing.h"
@@ -73,6 +74,17 @@ DenseCloud OccupiedCells(const std::string& path, double* resolution) {
   return cells;
 }
 
+void WriteGhostRows(const std::string& source, const DenseCloud& cloud,
+                    const std::vector<GhostPoint>& ghosts,
+                    const std::vector<int>& frame_of_triangle, std::ofstream* out) {
+  for (const GhostPoint& g : ghosts) {
+    const DensePoint& p = cloud[g.index];
+    *out << source << ',' << g.index << ',' << p.position.x() << ',' << p.position.y() << ','
+         << p.position.z() << ',' << p.label << ',' << g.static_distance << ','
+         << frame_of_triangle[g.actor_triangle] << '\n';
+  }
+}
+
 }  // namespace
 
 DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
@@ -140,15 +152,28 @@ DenseEvaluation EvaluateDenseMap(const DenseEvaluationOptions& options,
           : options.billboards;
   const synth::SynthSequence sequence(synth_options);
   CheckRebuilt(sequence, dataset.GroundTruth(), options.dataset);
+  std::vector<int> frame_of_triangle;
   const synth::TriangleList swept =
-      SweptActorGeometry(sequence, options.truth.actor_frame_stride, frames);
+      SweptActorGeometry(sequence, options.truth.actor_frame_stride, frames, &frame_of_triangle);
   evaluation.frames = frames;
   evaluation.actor_triangles = swept.size();
-  evaluation.scores = ScoreDenseCloud(cloud, sequence.Scene().triangles, swept,
-                                      KeyObjectLabels(sequence), options.truth);
+  std::vector<GhostPoint> ghosts, ghost_cells;
+  const bool list = !options.ghosts_csv.empty();
+  evaluation.scores =
+      ScoreDenseCloud(cloud, sequence.Scene().triangles, swept, KeyObjectLabels(sequence),
+                      options.truth, list ? &ghosts : nullptr);
   if (!options.octomap.empty()) {
-    evaluation.octomap_scores = ScoreDenseCloud(cells, sequence.Scene().triangles, swept,
-                                                KeyObjectLabels(sequence), options.truth);
+    evaluation.octomap_scores =
+        ScoreDenseCloud(cells, sequence.Scene().triangles, swept, KeyObjectLabels(sequence),
+                        options.truth, list ? &ghost_cells : nullptr);
+  }
+  if (list) {
+    std::ofstream out(options.ghosts_csv);
+    if (!out) throw Error(options.ghosts_csv + ": cannot open for writing");
+    out << "source,index,x,y,z,label,static_distance_m,actor_frame\n";
+    WriteGhostRows("map", cloud, ghosts, frame_of_triangle, &out);
+    WriteGhostRows("octomap", cells, ghost_cells, frame_of_triangle, &out);
+    if (!out) throw Error(options.ghosts_csv + ": write failed");
   }
   evaluation.seconds = watch.ElapsedMs() / 1000.0;
   return evaluation;

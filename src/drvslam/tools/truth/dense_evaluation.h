@@ -30,6 +30,9 @@ struct DenseEvaluationOptions {
   // A run's dense_map.bt: its occupied leaves (centres at the tree's resolution) are scored
   // like map points, aligned with `trajectory` as the map is.
   std::string octomap;
+  // Writes every ghost (and octomap cell in swept space) as CSV here: where it lies, how far
+  // from the static scene, and the first frame an actor came within the ghost margin.
+  std::string ghosts_csv;
   DenseTruthOptions truth;
 };
 

@@ -114,8 +114,8 @@ double PointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
 
 DenseTruthScores ScoreDenseCloud(const DenseCloud& cloud, const synth::TriangleList& static_scene,
                                  const synth::TriangleList& actors_swept,
-                                 const std::set<int>& key_labels,
-                                 const DenseTruthOptions& options) {
+                                 const std::set<int>& key_labels, const DenseTruthOptions& options,
+                                 std::vector<GhostPoint>* ghosts) {
   DenseTruthScores scores;
   scores.points = cloud.size();
   if (cloud.empty()) return scores;
@@ -129,12 +129,21 @@ DenseTruthScores ScoreDenseCloud(const DenseCloud& cloud, const synth::TriangleL
     });
   }
   std::vector<bool> near_actor(cloud.size(), false);
-  for (const synth::Triangle& t : actors_swept) {
+  std::vector<std::size_t> first_triangle(ghosts != nullptr ? cloud.size() : 0);
+  for (std::size_t k = 0; k < actors_swept.size(); ++k) {
+    const synth::Triangle& t = actors_swept[k];
     grid.ForNear(t, options.ghost_margin, [&](uint32_t i) {
       if (near_actor[i] || distance[i] <= options.ghost_margin) return;
       near_actor[i] = PointTriangleDistance(cloud[i].position.cast<double>(), t.p[0], t.p[1],
                                             t.p[2]) <= options.ghost_margin;
+      if (near_actor[i] && ghosts != nullptr) first_triangle[i] = k;
     });
+  }
+  if (ghosts != nullptr) {
+    ghosts->clear();
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      if (near_actor[i]) ghosts->push_back({i, distance[i], first_triangle[i]});
+    }
   }
   std::vector<double> static_distance;
   DenseCloud key_points, background_points;
@@ -159,13 +168,15 @@ DenseTruthScores ScoreDenseCloud(const DenseCloud& cloud, const synth::TriangleL
   return scores;
 }
 
-synth::TriangleList SweptActorGeometry(const synth::SynthSequence& sequence, int stride,
-                                       int frames) {
+synth::TriangleList SweptActorGeometry(const synth::SynthSequence& sequence, int stride, int frames,
+                                       std::vector<int>* frame_of_triangle) {
   if (stride < 1) throw Error("actor frame stride must be at least 1");
   const int last = frames > 0 ? std::min(frames, sequence.FrameCount()) : sequence.FrameCount();
   synth::TriangleList swept;
+  if (frame_of_triangle != nullptr) frame_of_triangle->clear();
   for (int f = 0; f < last; f += stride) {
     sequence.Actors().AppendTriangles(f, &swept);
+    if (frame_of_triangle != nullptr) frame_of_triangle->resize(swept.size(), f);
   }
   return swept;
 }

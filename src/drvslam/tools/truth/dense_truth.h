@@ -50,14 +50,26 @@ struct DenseTruthScores {
   std::optional<double> background_density;
 };
 
+// One ghost: which point, how far from the static scene, and the first swept actor triangle
+// within the ghost margin (its frame tells when the actor was there).
+struct GhostPoint {
+  std::size_t index = 0;
+  double static_distance = 0.0;
+  std::size_t actor_triangle = 0;
+};
+
 // Scores world points (in the ground-truth frame). `key_labels`: class ids of key objects.
+// `ghosts` (may be null) receives every ghost, in point order.
 DenseTruthScores ScoreDenseCloud(const DenseCloud& cloud, const synth::TriangleList& static_scene,
                                  const synth::TriangleList& actors_swept,
-                                 const std::set<int>& key_labels, const DenseTruthOptions& options);
+                                 const std::set<int>& key_labels, const DenseTruthOptions& options,
+                                 std::vector<GhostPoint>* ghosts = nullptr);
 
 // Every actor triangle of `sequence` at every stride-th frame of the first `frames` (0 = all).
+// `frame_of_triangle` (may be null) receives the frame of each.
 synth::TriangleList SweptActorGeometry(const synth::SynthSequence& sequence, int stride,
-                                       int frames = 0);
+                                       int frames = 0,
+                                       std::vector<int>* frame_of_triangle = nullptr);
 // COCO ids of the sequence's static key objects.
 std::set<int> KeyObjectLabels(const synth::SynthSequence& sequence);
 
