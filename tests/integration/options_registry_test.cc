@@ -264,14 +264,20 @@ TEST_F(ConfigCommandTest, TheDumpRunsAsItIsAndGivesTheDefaultTrajectory) {
   ASSERT_EQ(dumped.status, 0) << dumped.output;
   EXPECT_EQ(test::ReadFile(dump), SettingsDump(SettingsSections()));
   const std::string seq = (root_ / "seq").string();
+  // No --segmenter: the dump's Segmentation.backend (auto) must pick the sequence's
+  // ground-truth masks exactly as a run without any settings file does.
   const CommandResult with_dump =
-      RunCli("run --sequential --strict-settings --segmenter gt --dataset " + seq + " --config " +
-             dump.string() + " --out " + (root_ / "out_dump").string());
+      RunCli("run --sequential --strict-settings --dataset " + seq + " --config " + dump.string() +
+             " --out " + (root_ / "out_dump").string());
   ASSERT_EQ(with_dump.status, 0) << with_dump.output;
   EXPECT_EQ(with_dump.output.find("unknown setting"), std::string::npos) << with_dump.output;
   const CommandResult with_defaults =
       RunCli("run --sequential --dataset " + seq + " --out " + (root_ / "out_defaults").string());
   ASSERT_EQ(with_defaults.status, 0) << with_defaults.output;
+  EXPECT_NE(with_dump.output.find("gt (ground-truth masks: ORACLE)"), std::string::npos)
+      << with_dump.output;
+  EXPECT_NE(with_defaults.output.find("gt (ground-truth masks: ORACLE)"), std::string::npos)
+      << with_defaults.output;
   const std::string trajectory_dump = test::ReadFile(root_ / "out_dump" / "CameraTrajectory.txt");
   const std::string trajectory_defaults =
       test::ReadFile(root_ / "out_defaults" / "CameraTrajectory.txt");

@@ -39,16 +39,14 @@ void ResolveSegmenter(const BenchmarkEntry& entry, BenchmarkEntryResult* result)
   if (config.empty() && fs::exists(dataset_settings, error)) config = dataset_settings.string();
   SegmentationOptions segmentation;
   DynamicOptions dynamic;
-  bool backend_in_settings = false;
   if (!config.empty()) {
     const SettingsFile file(config);
     segmentation = LoadSegmentationOptions(file);
-    backend_in_settings = file.Has("Segmentation.backend");
     dynamic = LoadDynamicOptions(file);
   }
   const RunOptions run = ToRunOptions(entry, "");
   const DynamicRunSetup setup =
-      ResolveDynamicRun(run.dynamic, entry.dataset, segmentation, backend_in_settings, dynamic);
+      ResolveDynamicRun(run.dynamic, entry.dataset, segmentation, dynamic);
   result->segmenter = ToString(setup.backend);
   result->dynamic_on = setup.config.has_value();
   result->segmenter_used = result->dynamic_on && setup.backend != SegmenterBackend::kNone;
