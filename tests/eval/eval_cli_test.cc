@@ -1,7 +1,6 @@
 // Runs the built `drvslam eval` on files in a temporary folder: the contract is the exit status,
 // the "error: ..." line and the JSON keys.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -12,30 +11,16 @@
 #include <string>
 
 #include "drvslam/io/trajectory_io.h"
+#include "test_support/cli_run.h"
 #include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
 
+using drvslam::testing::CliRun;
+using drvslam::testing::RunCli;
+
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun RunCli(const std::string& arguments) {
-  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  std::size_t read = 0;
-  while ((read = fread(buffer, 1, sizeof(buffer), pipe)) > 0) run.output.append(buffer, read);
-  const int status = pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
 
 class EvalCliTest : public ::testing::Test {
  protected:
