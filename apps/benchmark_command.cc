@@ -27,6 +27,7 @@ struct BenchmarkArguments {
   BenchmarkShortcut shortcut;
   int runs = 5;
   std::string out = "benchmark_out";
+  bool strict_settings = false;
 };
 
 // The command line that reproduces this benchmark, for the report.
@@ -48,6 +49,7 @@ std::string CommandLine(const BenchmarkArguments& args) {
   if (s.max_frames > 0) add("--max-frames", std::to_string(s.max_frames));
   add("--runs", std::to_string(args.runs));
   add("--out", args.out);
+  if (args.strict_settings) command += " --strict-settings";
   return command;
 }
 
@@ -74,6 +76,7 @@ void RunBenchmarkCommand(const BenchmarkArguments& args) {
   options.runs = args.runs;
   options.out_dir = args.out;
   options.command = CommandLine(args);
+  options.strict_settings = args.strict_settings;
 
   std::unique_ptr<ProgressBar> bar;
   BenchmarkProgress progress;
@@ -154,6 +157,9 @@ const bool kRegistered = RegisterCommand("benchmark", [](CLI::App& root) {
   command->add_option("--runs", args->runs, "runs per entry (a list entry's runs overrides it)")
       ->capture_default_str();
   command->add_option("--out", args->out, "output folder")->capture_default_str();
+  command->add_flag("--strict-settings", args->strict_settings,
+                    "an unknown key in a settings file is an error (checked before the first "
+                    "run, and passed to every run as drvslam run --strict-settings)");
   command->callback([args] {
     if (args->list.empty() && args->shortcut.datasets.empty()) {
       throw Error("benchmark: give --list FILE or at least one --dataset DIR");

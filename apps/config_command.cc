@@ -59,22 +59,22 @@ void CheckFile(const std::string& path, bool strict) {
   std::printf("%s: settings valid\n", path.c_str());
 }
 
+// An option that writes to FILE, or to standard output when FILE is '-' or left out.
+void AddOutputOption(CLI::App* command, const std::string& name, std::string* file,
+                     const std::string& what) {
+  command->add_option(name, *file, what + " (no FILE or '-': standard output)")
+      ->expected(0, 1)
+      ->default_str("-");
+}
+
 const bool kRegistered = RegisterCommand("config", [](CLI::App& root) {
   auto args = std::make_shared<ConfigArguments>();
   CLI::App* command = root.add_subcommand(
       "config", "settings files: dump every key with its default and doc, write the docs, check");
-  command
-      ->add_option("--dump", args->dump,
-                   "write a settings file with every key at its default and its doc line "
-                   "(no FILE or '-': standard output)")
-      ->expected(0, 1)
-      ->default_str("-");
-  command
-      ->add_option("--markdown", args->markdown,
-                   "write the settings reference (docs/configuration.md) as Markdown "
-                   "(no FILE or '-': standard output)")
-      ->expected(0, 1)
-      ->default_str("-");
+  AddOutputOption(command, "--dump", &args->dump,
+                  "write a settings file with every key at its default and its doc line");
+  AddOutputOption(command, "--markdown", &args->markdown,
+                  "write the settings reference (docs/configuration.md) as Markdown");
   command->add_option("--check", args->check,
                       "load a settings file as `drvslam run` does and report bad or unknown keys");
   command->add_flag("--strict-settings", args->strict,

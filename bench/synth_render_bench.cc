@@ -29,29 +29,27 @@ const SynthSequence& Sequence() {
   return *sequence;
 }
 
-void BM_RenderFrame(benchmark::State& state) {
-  const SynthSequence& sequence = Sequence();
+// The benchmark loop: renders every 7th frame, cycling through the sequence; counts fps.
+void RenderFrames(benchmark::State& state, const SynthSequence& sequence, bool apply_sensor) {
   int frame = 0;
   for (auto _ : state) {
-    RenderBuffers buffers = sequence.Render(frame, /*apply_sensor=*/false);
+    RenderBuffers buffers = sequence.Render(frame, apply_sensor);
     benchmark::DoNotOptimize(buffers.bgr.data);
     frame = (frame + 7) % sequence.FrameCount();
   }
   state.counters["fps"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
+
+void BM_RenderFrame(benchmark::State& state) {
+  const SynthSequence& sequence = Sequence();
+  RenderFrames(state, sequence, /*apply_sensor=*/false);
+}
 BENCHMARK(BM_RenderFrame)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_RenderFrameWithSensor(benchmark::State& state) {
   const SynthSequence& sequence = Sequence();
-  int frame = 0;
-  for (auto _ : state) {
-    RenderBuffers buffers = sequence.Render(frame);
-    benchmark::DoNotOptimize(buffers.bgr.data);
-    frame = (frame + 7) % sequence.FrameCount();
-  }
-  state.counters["fps"] =
-      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  RenderFrames(state, sequence, /*apply_sensor=*/true);
 }
 BENCHMARK(BM_RenderFrameWithSensor)
     ->Unit(benchmark::kMillisecond)
@@ -97,14 +95,7 @@ void BM_RenderFrameWithEffect(benchmark::State& state) {
       break;
   }
   const SynthSequence sequence(options);
-  int frame = 0;
-  for (auto _ : state) {
-    RenderBuffers buffers = sequence.Render(frame);
-    benchmark::DoNotOptimize(buffers.bgr.data);
-    frame = (frame + 7) % sequence.FrameCount();
-  }
-  state.counters["fps"] =
-      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  RenderFrames(state, sequence, /*apply_sensor=*/true);
 }
 BENCHMARK(BM_RenderFrameWithEffect)
     ->DenseRange(0, 5)

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -47,28 +48,21 @@ class SettingsTest : public ::testing::Test {
   fs::path dir_;
 };
 
+// The camera's fx, fy, cx, cy, k1, k2, p1, p2, k3 as a TUM calibration page lists them.
+void ExpectCalibration(const CameraOptions& camera, const std::array<double, 9>& published) {
+  const std::array<double, 9> loaded = {camera.fx, camera.fy, camera.cx, camera.cy, camera.k1,
+                                        camera.k2, camera.p1, camera.p2, camera.k3};
+  for (std::size_t i = 0; i < loaded.size(); ++i) EXPECT_DOUBLE_EQ(loaded[i], published[i]) << i;
+}
+
 TEST_F(SettingsTest, ShippedTumConfigsCarryThePublishedCalibrations) {
   const std::string configs = std::string(DRVSLAM_SOURCE_DIR) + "/configs/";
   const Settings fr1 = LoadSettings(configs + "TUM1.yaml");
-  EXPECT_DOUBLE_EQ(fr1.camera.fx, 517.306408);
-  EXPECT_DOUBLE_EQ(fr1.camera.fy, 516.469215);
-  EXPECT_DOUBLE_EQ(fr1.camera.cx, 318.643040);
-  EXPECT_DOUBLE_EQ(fr1.camera.cy, 255.313989);
-  EXPECT_DOUBLE_EQ(fr1.camera.k1, 0.262383);
-  EXPECT_DOUBLE_EQ(fr1.camera.k2, -0.953104);
-  EXPECT_DOUBLE_EQ(fr1.camera.p1, -0.005358);
-  EXPECT_DOUBLE_EQ(fr1.camera.p2, 0.002628);
-  EXPECT_DOUBLE_EQ(fr1.camera.k3, 1.163314);
+  ExpectCalibration(fr1.camera, {517.306408, 516.469215, 318.643040, 255.313989, 0.262383,
+                                 -0.953104, -0.005358, 0.002628, 1.163314});
   const Settings fr2 = LoadSettings(configs + "TUM2.yaml");
-  EXPECT_DOUBLE_EQ(fr2.camera.fx, 520.908620);
-  EXPECT_DOUBLE_EQ(fr2.camera.fy, 521.007327);
-  EXPECT_DOUBLE_EQ(fr2.camera.cx, 325.141442);
-  EXPECT_DOUBLE_EQ(fr2.camera.cy, 249.701764);
-  EXPECT_DOUBLE_EQ(fr2.camera.k1, 0.231222);
-  EXPECT_DOUBLE_EQ(fr2.camera.k2, -0.784899);
-  EXPECT_DOUBLE_EQ(fr2.camera.p1, -0.003257);
-  EXPECT_DOUBLE_EQ(fr2.camera.p2, -0.000105);
-  EXPECT_DOUBLE_EQ(fr2.camera.k3, 0.917205);
+  ExpectCalibration(fr2.camera, {520.908620, 521.007327, 325.141442, 249.701764, 0.231222,
+                                 -0.784899, -0.003257, -0.000105, 0.917205});
   const Settings fr3 = LoadSettings(configs + "TUM3.yaml");
   EXPECT_DOUBLE_EQ(fr3.camera.fx, 535.4);
   EXPECT_DOUBLE_EQ(fr3.camera.fy, 539.2);

@@ -31,12 +31,10 @@ class DynamicRunSetupTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(root_); }
 
   DynamicRunSetup Resolve(const DynamicRunChoice& choice, const std::string& dataset,
-                          bool backend_in_settings = false,
-                          SegmenterBackend settings_backend = SegmenterBackend::kNone) {
+                          SegmenterBackend settings_backend = SegmenterBackend::kAuto) {
     SegmentationOptions segmentation;
     segmentation.backend = settings_backend;
-    return ResolveDynamicRun(choice, (root_ / dataset).string(), segmentation, backend_in_settings,
-                             DynamicOptions());
+    return ResolveDynamicRun(choice, (root_ / dataset).string(), segmentation, DynamicOptions());
   }
 
   fs::path root_;
@@ -89,9 +87,25 @@ TEST_F(DynamicRunSetupTest, TheCommandLineWins) {
   EXPECT_EQ(only_geometry.description, "segmenter none, dynamic on, realtime");
 
   // A settings file's backend is used when the command line names none.
-  const DynamicRunSetup from_settings = Resolve({}, "synthetic", true, SegmenterBackend::kNone);
+  const DynamicRunSetup from_settings = Resolve({}, "synthetic", SegmenterBackend::kNone);
   EXPECT_EQ(from_settings.backend, SegmenterBackend::kNone);
   EXPECT_FALSE(from_settings.config.has_value());
+}
+
+TEST_F(DynamicRunSetupTest, AnAutoBackendInTheSettingsIsTheDatasetDefault) {
+  // A dumped settings file says `Segmentation.backend: "auto"`: the same as naming none.
+  const DynamicRunSetup synthetic = Resolve({}, "synthetic", SegmenterBackend::kAuto);
+  EXPECT_EQ(synthetic.backend, SegmenterBackend::kGroundTruth);
+  EXPECT_TRUE(synthetic.implicit_ground_truth);
+  ASSERT_TRUE(synthetic.config.has_value());
+  ASSERT_NE(synthetic.config->segmenter, nullptr);
+  const DynamicRunSetup plain = Resolve({}, "plain", SegmenterBackend::kAuto);
+  EXPECT_EQ(plain.backend, SegmenterBackend::kNone);
+  EXPECT_FALSE(plain.config.has_value());
+  // The command line still wins over it.
+  DynamicRunChoice none;
+  none.segmenter = "none";
+  EXPECT_EQ(Resolve(none, "synthetic", SegmenterBackend::kAuto).backend, SegmenterBackend::kNone);
 }
 
 TEST_F(DynamicRunSetupTest, AModelMeansYolo) {

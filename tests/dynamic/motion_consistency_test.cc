@@ -69,6 +69,14 @@ Counts CountByLabel(const MotionConsistencyResult& result, const Pair& pair) {
   return counts;
 }
 
+// The camera steps 5 cm sideways and 3 cm forward; the patch plane moves by (3, 3) cm.
+Pair SidestepPair() {
+  Camera prev_camera;
+  Camera cur_camera;
+  cur_camera.center = {0.05, 0.0, 0.03};
+  return MakePair(prev_camera, cur_camera, {0.03, 0.03});
+}
+
 TEST(MotionConsistencyTest, FindsAPlantedMovingClusterAndKeepsTheStaticScene) {
   Camera prev_camera;
   Camera cur_camera;
@@ -135,10 +143,7 @@ TEST(MotionConsistencyTest, PureRotationFallsBackToTheHomography) {
 }
 
 TEST(MotionConsistencyTest, RepeatedRunsGiveIdenticalResults) {
-  Camera prev_camera;
-  Camera cur_camera;
-  cur_camera.center = {0.05, 0.0, 0.03};
-  const Pair pair = MakePair(prev_camera, cur_camera, {0.03, 0.03});
+  const Pair pair = SidestepPair();
   DynamicOptions options;
   const MotionConsistency consistency(options);
   const FlowImage a = BuildFlowImage(pair.prev.gray, options);
@@ -240,10 +245,7 @@ TEST(MotionConsistencyTest, NaNDepthUnderATrackIsNoMeasurement) {
   lens.cx = 319.5;
   lens.cy = 239.5;
   const PinholeCamera camera(lens);
-  Camera prev_camera;
-  Camera cur_camera;
-  cur_camera.center = {0.05, 0.0, 0.03};
-  const Pair pair = MakePair(prev_camera, cur_camera, {0.03, 0.03});
+  const Pair pair = SidestepPair();
   DynamicOptions options;
   const MotionConsistency consistency(options);
   const FlowImage a = BuildFlowImage(pair.prev.gray, options);

@@ -11,21 +11,13 @@
 namespace drvslam {
 namespace {
 
+using testing::ErrorMessageOf;
 using testing::HelixPose;
 using testing::InOtherWorld;
 using testing::MakeTrajectory;
 using testing::SomeWorldChange;
 
 SE3 At(double x, double y, double z) { return SE3(Eigen::Quaterniond::Identity(), {x, y, z}); }
-
-std::string MessageOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(ComputeAteTest, RigidlyMovedEstimateHasZeroError) {
   const Trajectory gt = MakeTrajectory(300, 1000.0, 1.0 / 30.0, HelixPose);
@@ -134,7 +126,7 @@ TEST(ComputeAteTest, CoverageIsOfTheSequencesFramesWhenTheCallerKnowsThem) {
   EXPECT_STREQ(CoverageOfName(unknown.coverage_of), "ground_truth_poses");
   // More matched poses than frames: the frame count belongs to another sequence.
   options.sequence_frames = 39;
-  EXPECT_NE(MessageOf([&] { ComputeAte(gt, est, options); }).find("--frames 39"),
+  EXPECT_NE(ErrorMessageOf([&] { ComputeAte(gt, est, options); }).find("--frames 39"),
             std::string::npos);
 }
 
@@ -147,7 +139,7 @@ TEST(ComputeAteTest, JitterInsideTheWindowMatchesOutsideDoesNot) {
   }
   EXPECT_EQ(ComputeAte(gt, inside, AteOptions{}).matched, 60u);
   EXPECT_LT(ComputeAte(gt, inside, AteOptions{}).errors.rmse, 1e-9);
-  const std::string message = MessageOf([&] { ComputeAte(gt, outside, AteOptions{}); });
+  const std::string message = ErrorMessageOf([&] { ComputeAte(gt, outside, AteOptions{}); });
   EXPECT_NE(message.find("no timestamps associate within --max-diff"), std::string::npos)
       << message;
   // A wider window, or the right offset, brings them back.
@@ -186,17 +178,18 @@ TEST(ComputeAteTest, ScaleIsRecoveredExactlyWhenAsked) {
 TEST(ComputeAteTest, TooFewMatchesAndBadOptionsAreErrors) {
   const Trajectory gt = MakeTrajectory(50, 0.0, 0.1, HelixPose);
   const Trajectory two(gt.begin(), gt.begin() + 2);
-  EXPECT_NE(MessageOf([&] { ComputeAte(gt, two, AteOptions{}); }).find("at least 3"),
+  EXPECT_NE(ErrorMessageOf([&] { ComputeAte(gt, two, AteOptions{}); }).find("at least 3"),
             std::string::npos);
   for (double bad : {-1.0, 0.0, std::nan("")}) {
     AteOptions options;
     options.max_difference = bad;
-    EXPECT_NE(MessageOf([&] { ComputeAte(gt, gt, options); }).find("--max-diff"),
+    EXPECT_NE(ErrorMessageOf([&] { ComputeAte(gt, gt, options); }).find("--max-diff"),
               std::string::npos);
   }
   AteOptions options;
   options.offset = INFINITY;
-  EXPECT_NE(MessageOf([&] { ComputeAte(gt, gt, options); }).find("--offset"), std::string::npos);
+  EXPECT_NE(ErrorMessageOf([&] { ComputeAte(gt, gt, options); }).find("--offset"),
+            std::string::npos);
   EXPECT_THROW(ComputeAte(gt, Trajectory{}, AteOptions{}), Error);
 }
 

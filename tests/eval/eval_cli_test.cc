@@ -1,7 +1,6 @@
 // Runs the built `drvslam eval` on files in a temporary folder: the contract is the exit status,
 // the "error: ..." line and the JSON keys.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -12,30 +11,16 @@
 #include <string>
 
 #include "drvslam/io/trajectory_io.h"
+#include "test_support/cli_run.h"
 #include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
 
+using drvslam::testing::CliRun;
+using drvslam::testing::RunCli;
+
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun RunCli(const std::string& arguments) {
-  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  std::size_t read = 0;
-  while ((read = fread(buffer, 1, sizeof(buffer), pipe)) > 0) run.output.append(buffer, read);
-  const int status = pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
 
 class EvalCliTest : public ::testing::Test {
  protected:
@@ -61,6 +46,15 @@ class EvalCliTest : public ::testing::Test {
   void TearDown() override {
     if (!dir_.empty()) fs::remove_all(dir_);
   }
+
+  // `drvslam eval GT EST <options> --json FILE` into *run; FILE parsed (null when unreadable).
+  nlohmann::json EvalJson(const std::string& options, CliRun* run) const {
+    const std::string json_path = (dir_ / "eval.json").string();
+    *run = RunCli("eval " + gt_ + " " + est_ + " " + options + " --json " + json_path);
+    std::ifstream in(json_path);
+    return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  }
+
   fs::path dir_;
   std::string gt_, est_;
 };
@@ -93,24 +87,20 @@ TEST_F(EvalCliTest, WritesJsonWithTheContractKeysAndAPlot) {
 
 // Without a frame count, coverage is matched over ground-truth poses, and both outputs say so.
 TEST_F(EvalCliTest, WithoutAFrameCountCoverageIsOfGroundTruthPoses) {
-  const std::string json_path = (dir_ / "eval.json").string();
-  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --json " + json_path);
+  CliRun run;
+  const nlohmann::json json = EvalJson("", &run);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("of ground-truth poses"), std::string::npos) << run.output;
-  std::ifstream in(json_path);
-  const nlohmann::json json = nlohmann::json::parse(in);
   EXPECT_EQ(json["ate"]["coverage_of"], "ground_truth_poses");
   EXPECT_NEAR(json["ate"]["coverage"].get<double>(), 1.0, 1e-12);
 }
 
 TEST_F(EvalCliTest, FramesMakeCoverageOfTheSequencesFrames) {
-  const std::string json_path = (dir_ / "eval.json").string();
-  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --frames 300 --json " + json_path);
+  CliRun run;
+  const nlohmann::json json = EvalJson("--frames 300", &run);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("50.00 %  (of the sequence's frames)"), std::string::npos)
       << run.output;
-  std::ifstream in(json_path);
-  const nlohmann::json json = nlohmann::json::parse(in);
   EXPECT_EQ(json["ate"]["coverage_of"], "sequence_frames");
   EXPECT_NEAR(json["ate"]["coverage"].get<double>(), 150.0 / 300.0, 1e-12);
 }
@@ -128,12 +118,9 @@ TEST_F(EvalCliTest, DatasetGivesTheSequencesFrameCount) {
   }
   rgb.close();
   depth.close();
-  const std::string json_path = (dir_ / "eval.json").string();
-  const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --dataset " + sequence.string() +
-                            " --json " + json_path);
+  CliRun run;
+  const nlohmann::json json = EvalJson("--dataset " + sequence.string(), &run);
   ASSERT_EQ(run.status, 0) << run.output;
-  std::ifstream in(json_path);
-  const nlohmann::json json = nlohmann::json::parse(in);
   EXPECT_EQ(json["ate"]["coverage_of"], "sequence_frames");
   EXPECT_NEAR(json["ate"]["coverage"].get<double>(), 150.0 / 200.0, 1e-12);
 }

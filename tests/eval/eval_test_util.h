@@ -5,7 +5,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <functional>
+#include <string>
 
+#include "drvslam/core/error.h"
 #include "drvslam/core/se3.h"
 #include "drvslam/io/trajectory_io.h"
 
@@ -42,6 +44,16 @@ inline Trajectory InOtherWorld(const Trajectory& trajectory, const SE3& world_ch
   Trajectory moved = trajectory;
   for (StampedPose& pose : moved) pose.T_wc = world_change * pose.T_wc;
   return moved;
+}
+
+// The message of the drvslam::Error `action` throws; empty when it throws none.
+inline std::string ErrorMessageOf(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace drvslam::testing

@@ -13,19 +13,11 @@
 namespace drvslam {
 namespace {
 
+using testing::ErrorMessageOf;
 using testing::HelixPose;
 using testing::InOtherWorld;
 using testing::MakeTrajectory;
 using testing::SomeWorldChange;
-
-std::string MessageOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 SE3 Translation(double x) { return SE3(Eigen::Quaterniond::Identity(), {x, 0.0, 0.0}); }
 
@@ -147,19 +139,21 @@ TEST(ComputeRpeTest, BadInputIsAnError) {
   const Trajectory gt = MakeTrajectory(40, 0.0, 0.1, HelixPose);
   Trajectory later = gt;
   for (StampedPose& pose : later) pose.timestamp += 1000.0;
-  EXPECT_NE(
-      MessageOf([&] { ComputeRpe(gt, later, RpeOptions{}); }).find("too few overlapping stamps"),
-      std::string::npos);
+  EXPECT_NE(ErrorMessageOf([&] {
+              ComputeRpe(gt, later, RpeOptions{});
+            }).find("too few overlapping stamps"),
+            std::string::npos);
   for (double bad : {0.0, -1.0, std::nan("")}) {
     RpeOptions options;
     options.delta = bad;
-    EXPECT_NE(MessageOf([&] { ComputeRpe(gt, gt, options); }).find("--rpe-delta"),
+    EXPECT_NE(ErrorMessageOf([&] { ComputeRpe(gt, gt, options); }).find("--rpe-delta"),
               std::string::npos);
   }
   // A trajectory shorter than delta has no pairs.
   const Trajectory short_one = MakeTrajectory(10, 0.0, 0.05, HelixPose);
-  EXPECT_NE(MessageOf([&] { ComputeRpe(short_one, short_one, RpeOptions{}); }).find("--rpe-delta"),
-            std::string::npos);
+  EXPECT_NE(
+      ErrorMessageOf([&] { ComputeRpe(short_one, short_one, RpeOptions{}); }).find("--rpe-delta"),
+      std::string::npos);
   EXPECT_THROW(ComputeRpe(gt, Trajectory{}, RpeOptions{}), Error);
 }
 

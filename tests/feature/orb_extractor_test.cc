@@ -40,16 +40,8 @@ std::vector<int> CellCounts(const std::vector<cv::KeyPoint>& keypoints, cv::Size
   return counts;
 }
 
-class PhotoTest : public ::testing::TestWithParam<const char*> {
+class PhotoTest : public test::PhotoParamTest {
  protected:
-  void SetUp() override {
-    gray_ = test::LoadPhoto640(GetParam());
-    if (gray_.empty()) {
-      DRVSLAM_MISSING_TEST_DATA() << DRVSLAM_OPENCV_DATA_DIR << "/" << GetParam()
-                                  << " not found (install opencv-doc)";
-    }
-  }
-  cv::Mat gray_;
   OrbExtractor extractor_{OrbExtractorOptions{}};
 };
 

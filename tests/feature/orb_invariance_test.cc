@@ -84,17 +84,7 @@ Comparison Compare(const Features& a, const Features& b,
   return c;
 }
 
-class InvarianceTest : public ::testing::TestWithParam<const char*> {
- protected:
-  void SetUp() override {
-    gray_ = test::LoadPhoto640(GetParam());
-    if (gray_.empty()) {
-      DRVSLAM_MISSING_TEST_DATA() << DRVSLAM_OPENCV_DATA_DIR << "/" << GetParam()
-                                  << " not found (install opencv-doc)";
-    }
-  }
-  cv::Mat gray_;
-};
+class InvarianceTest : public test::PhotoParamTest {};
 
 TEST_P(InvarianceTest, RotationBy30Degrees) {
   const cv::Point2f center(319.5f, 239.5f);

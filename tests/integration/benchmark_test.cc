@@ -457,6 +457,68 @@ TEST_F(BenchmarkEndToEndTest, TwoSequentialRunsAgreeAndAFailedRunIsRecordedAndRe
       << md;
 }
 
+TEST_F(BenchmarkEndToEndTest, StrictSettingsStopsATypoBeforeAnyRunAndReachesEveryRun) {
+  const fs::path typo = root_ / "typo.yaml";
+  WriteText(typo, "%YAML:1.0\nDynamic.largeshare: 0.4\n");
+  const fs::path clean = root_ / "clean.yaml";
+  WriteText(clean, "%YAML:1.0\nDynamic.largeShare: 0.4\n");
+  BenchmarkShortcut shortcut;
+  shortcut.datasets = {(root_ / "seq").string()};
+  shortcut.mode = "sequential";
+  shortcut.dense = "off";
+  shortcut.max_frames = 5;
+  BenchmarkOptions options;
+  options.runs = 1;
+  options.strict_settings = true;
+  int started = 0;
+  BenchmarkProgress progress;
+  progress.run_started = [&started](const BenchmarkEntryResult&, int) { ++started; };
+
+  shortcut.config = typo.string();
+  options.entries = EntriesFromShortcut(shortcut);
+  options.out_dir = (root_ / "strict_typo").string();
+  const std::string message = ErrorOf([&] { RunBenchmark(options, progress); });
+  EXPECT_NE(message.find("--dataset " + (root_ / "seq").string()), std::string::npos) << message;
+  EXPECT_NE(message.find("unknown setting Dynamic.largeshare (did you mean Dynamic.largeShare?)"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(started, 0);
+
+  // Without the flag the typo is a warning and the run goes ahead.
+  options.strict_settings = false;
+  options.out_dir = (root_ / "lenient_typo").string();
+  const BenchmarkReport lenient = RunBenchmark(options, progress);
+  ASSERT_EQ(lenient.entries.size(), 1u);
+  EXPECT_EQ(lenient.FailedRuns(), 0u);
+  EXPECT_EQ(lenient.entries[0].run_command.find("--strict-settings"), std::string::npos);
+
+  // A clean file runs, and each run is the strict `drvslam run` the report quotes.
+  shortcut.config = clean.string();
+  options.entries = EntriesFromShortcut(shortcut);
+  options.strict_settings = true;
+  options.out_dir = (root_ / "strict_clean").string();
+  const BenchmarkReport strict = RunBenchmark(options, progress);
+  ASSERT_EQ(strict.entries.size(), 1u);
+  ASSERT_EQ(strict.entries[0].runs.size(), 1u);
+  EXPECT_EQ(strict.entries[0].runs[0].status, RunStatus::kOk) << strict.entries[0].runs[0].error;
+  EXPECT_NE(strict.entries[0].run_command.find(" --strict-settings"), std::string::npos)
+      << strict.entries[0].run_command;
+  EXPECT_EQ(started, 2);
+
+  // Through the CLI: the flag is accepted, and the typo ends the command with status 2.
+  const std::string log = (root_ / "strict_cli.txt").string();
+  const std::string command = std::string(DRVSLAM_CLI) + " benchmark --strict-settings --dataset " +
+                              (root_ / "seq").string() + " --config " + typo.string() +
+                              " --runs 1 --out " + (root_ / "strict_cli").string() + " > " + log +
+                              " 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string output = test::ReadFile(log);
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 2) << output;
+  EXPECT_NE(output.find("error: "), std::string::npos) << output;
+  EXPECT_NE(output.find("unknown setting Dynamic.largeshare"), std::string::npos) << output;
+}
+
 TEST_F(BenchmarkEndToEndTest, StoppingKeepsTheTablesOfWhatFinished) {
   BenchmarkOptions options;
   BenchmarkShortcut shortcut;

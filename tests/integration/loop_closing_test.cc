@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <string>
 
-#include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
@@ -74,9 +73,7 @@ class LoopClosingTest : public ::testing::Test {
   }
 
   static double AteRmse(const RunSummary& summary) {
-    const Trajectory gt = ReadTumTrajectory((root_ / "seq" / "groundtruth.txt").string());
-    const Trajectory est = ReadTumTrajectory(summary.camera_trajectory_path);
-    return ComputeAte(gt, est, AteOptions{}).errors.rmse;
+    return test::AteAgainstGroundTruth(root_ / "seq", summary.camera_trajectory_path).errors.rmse;
   }
 
   static fs::path root_;

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -28,9 +27,13 @@
 #include "drvslam/settings_registry.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
+#include "test_support/cli_run.h"
 
 namespace drvslam {
 namespace {
+
+using drvslam::testing::CliRun;
+using drvslam::testing::RunCli;
 
 namespace fs = std::filesystem;
 
@@ -224,24 +227,6 @@ TEST(OptionChecksTest, BadValuesNameTheKeyTheValueAndTheRule) {
 
 // ---- end to end, through the CLI ----
 
-struct CommandResult {
-  int status = -1;
-  std::string output;
-};
-
-CommandResult RunCli(const std::string& arguments) {
-  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
-  CommandResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) result.output.append(buffer, n);
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
 class ConfigCommandTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -260,18 +245,24 @@ std::string ConfigCommandTest::failure_;
 TEST_F(ConfigCommandTest, TheDumpRunsAsItIsAndGivesTheDefaultTrajectory) {
   ASSERT_TRUE(failure_.empty()) << failure_;
   const fs::path dump = root_ / "dump.yaml";
-  const CommandResult dumped = RunCli("config --dump " + dump.string());
+  const CliRun dumped = RunCli("config --dump " + dump.string());
   ASSERT_EQ(dumped.status, 0) << dumped.output;
   EXPECT_EQ(test::ReadFile(dump), SettingsDump(SettingsSections()));
   const std::string seq = (root_ / "seq").string();
-  const CommandResult with_dump =
-      RunCli("run --sequential --strict-settings --segmenter gt --dataset " + seq + " --config " +
-             dump.string() + " --out " + (root_ / "out_dump").string());
+  // No --segmenter: the dump's Segmentation.backend (auto) must pick the sequence's
+  // ground-truth masks exactly as a run without any settings file does.
+  const CliRun with_dump =
+      RunCli("run --sequential --strict-settings --dataset " + seq + " --config " + dump.string() +
+             " --out " + (root_ / "out_dump").string());
   ASSERT_EQ(with_dump.status, 0) << with_dump.output;
   EXPECT_EQ(with_dump.output.find("unknown setting"), std::string::npos) << with_dump.output;
-  const CommandResult with_defaults =
+  const CliRun with_defaults =
       RunCli("run --sequential --dataset " + seq + " --out " + (root_ / "out_defaults").string());
   ASSERT_EQ(with_defaults.status, 0) << with_defaults.output;
+  EXPECT_NE(with_dump.output.find("gt (ground-truth masks: ORACLE)"), std::string::npos)
+      << with_dump.output;
+  EXPECT_NE(with_defaults.output.find("gt (ground-truth masks: ORACLE)"), std::string::npos)
+      << with_defaults.output;
   const std::string trajectory_dump = test::ReadFile(root_ / "out_dump" / "CameraTrajectory.txt");
   const std::string trajectory_defaults =
       test::ReadFile(root_ / "out_defaults" / "CameraTrajectory.txt");
@@ -285,7 +276,7 @@ TEST_F(ConfigCommandTest, StrictSettingsRejectsATypoAndPlainRunsWarn) {
   const fs::path typo = root_ / "typo.yaml";
   std::ofstream(typo) << "%YAML:1.0\nDynamic.largeshare: 0.4\n";
   const std::string seq = (root_ / "seq").string();
-  const CommandResult strict =
+  const CliRun strict =
       RunCli("run --sequential --strict-settings --max-frames 3 --dataset " + seq + " --config " +
              typo.string() + " --out " + (root_ / "out_strict").string());
   EXPECT_EQ(strict.status, 2) << strict.output;
@@ -294,9 +285,8 @@ TEST_F(ConfigCommandTest, StrictSettingsRejectsATypoAndPlainRunsWarn) {
                                "Dynamic.largeShare?)"),
             std::string::npos)
       << strict.output;
-  const CommandResult plain =
-      RunCli("run --sequential --max-frames 3 --dataset " + seq + " --config " + typo.string() +
-             " --out " + (root_ / "out_plain").string());
+  const CliRun plain = RunCli("run --sequential --max-frames 3 --dataset " + seq + " --config " +
+                              typo.string() + " --out " + (root_ / "out_plain").string());
   EXPECT_EQ(plain.status, 0) << plain.output;
   EXPECT_NE(plain.output.find("did you mean Dynamic.largeShare?"), std::string::npos)
       << plain.output;

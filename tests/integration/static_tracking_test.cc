@@ -8,8 +8,6 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
-#include "drvslam/eval/ate.h"
-#include "drvslam/io/trajectory_io.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 
@@ -46,9 +44,7 @@ TEST_F(StaticTrackingTest, TracksEveryFrameWithinOneCentimetre) {
   EXPECT_EQ(summary.stats.frames, 90u);
   EXPECT_EQ(summary.stats.tracked, 90u);
   EXPECT_GE(summary.stats.keyframes, 2u);
-  const Trajectory gt = ReadTumTrajectory((root_ / "seq" / "groundtruth.txt").string());
-  const Trajectory est = ReadTumTrajectory(summary.camera_trajectory_path);
-  const AteResult ate = ComputeAte(gt, est, AteOptions{});
+  const AteResult ate = test::AteAgainstGroundTruth(root_ / "seq", summary.camera_trajectory_path);
   EXPECT_EQ(ate.matched, 90u);
   EXPECT_LT(ate.errors.rmse, 0.01) << "ATE RMSE " << ate.errors.rmse << " m";
   // The stats file is written next to the trajectories.

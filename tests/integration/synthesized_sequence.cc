@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "drvslam/io/trajectory_io.h"
+
 namespace drvslam::test {
 
 namespace fs = std::filesystem;
@@ -30,6 +32,11 @@ std::string SynthesizeSequence(const fs::path& root, const std::string& synth_ar
                               " --out " + (root / "seq").string() + " > " + log.string() + " 2>&1";
   if (std::system(command.c_str()) == 0) return "";
   return command + "\n" + ReadFile(log);
+}
+
+AteResult AteAgainstGroundTruth(const fs::path& sequence, const std::string& trajectory_path) {
+  const Trajectory truth = ReadTumTrajectory((sequence / "groundtruth.txt").string());
+  return ComputeAte(truth, ReadTumTrajectory(trajectory_path), AteOptions{});
 }
 
 }  // namespace drvslam::test

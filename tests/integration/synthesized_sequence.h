@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include "drvslam/eval/ate.h"
+
 namespace drvslam::test {
 
 // The whole file as a string; empty when it cannot be read.
@@ -17,5 +19,10 @@ std::filesystem::path FreshTempFolder(const std::string& name);
 // Runs `drvslam --log-level warn synth <synth_args> --out <root>/seq`. Returns an empty string on
 // success, else the command line and its output, for the assertion message.
 std::string SynthesizeSequence(const std::filesystem::path& root, const std::string& synth_args);
+
+// ATE (default options) of the TUM trajectory file `trajectory_path` against the sequence
+// folder's groundtruth.txt.
+AteResult AteAgainstGroundTruth(const std::filesystem::path& sequence,
+                                const std::string& trajectory_path);
 
 }  // namespace drvslam::test

@@ -9,8 +9,6 @@
 #include <string>
 
 #include "../semantic/test_data.h"
-#include "drvslam/eval/ate.h"
-#include "drvslam/io/trajectory_io.h"
 #include "drvslam/semantic/yolo_segmenter.h"
 #include "drvslam/tools/runner/cutout_sequence.h"
 #include "drvslam/tools/runner/sequence_runner.h"
@@ -81,9 +79,7 @@ class YoloPipelineTest : public ::testing::Test {
   }
 
   static double Ate(const std::string& sequence, const RunSummary& run) {
-    const Trajectory gt = ReadTumTrajectory((fs::path(sequence) / "groundtruth.txt").string());
-    const Trajectory est = ReadTumTrajectory(run.camera_trajectory_path);
-    return ComputeAte(gt, est, AteOptions{}).errors.rmse;
+    return test::AteAgainstGroundTruth(sequence, run.camera_trajectory_path).errors.rmse;
   }
 
   std::string model_;

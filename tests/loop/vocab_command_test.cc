@@ -1,6 +1,5 @@
 // `drvslam vocab train|info|eval` end to end through the built CLI.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -8,29 +7,15 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "test_support/cli_run.h"
 #include "test_support/missing_data.h"
 #include "vocabulary_test_util.h"
 
 namespace drvslam {
 namespace {
 
-struct CommandResult {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-CommandResult RunCli(const std::string& arguments) {
-  CommandResult result;
-  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  std::size_t read = 0;
-  while ((read = fread(buffer, 1, sizeof(buffer), pipe)) > 0) result.output.append(buffer, read);
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using drvslam::testing::CliRun;
+using drvslam::testing::RunCli;
 
 // Blurred noise: plenty of corners for ORB.
 void WriteTexturedImages(const std::string& folder, int count) {
@@ -56,20 +41,20 @@ TEST_F(VocabCommandTest, TrainInfoAndEval) {
   const std::string folder = test::ScratchFolder("cli_train");
   WriteTexturedImages(folder, 4);
   const std::string vocabulary = folder + "/voc.txt";
-  const CommandResult train = RunCli("vocab train --images " + folder + " --out " + vocabulary +
-                                     " --k 4 --levels 3 --features 300 --format text");
+  const CliRun train = RunCli("vocab train --images " + folder + " --out " + vocabulary +
+                              " --k 4 --levels 3 --features 300 --format text");
   ASSERT_EQ(train.status, 0) << train.output;
   EXPECT_NE(train.output.find("images:      4"), std::string::npos) << train.output;
   EXPECT_NE(train.output.find("k, L:        4, 3"), std::string::npos) << train.output;
   EXPECT_NE(train.output.find("(text)"), std::string::npos) << train.output;
 
-  const CommandResult info = RunCli("vocab info " + vocabulary);
+  const CliRun info = RunCli("vocab info " + vocabulary);
   ASSERT_EQ(info.status, 0) << info.output;
   EXPECT_NE(info.output.find("k:       4"), std::string::npos) << info.output;
   EXPECT_NE(info.output.find("L:       3"), std::string::npos) << info.output;
   EXPECT_NE(info.output.find("words:   "), std::string::npos) << info.output;
 
-  const CommandResult eval =
+  const CliRun eval =
       RunCli("vocab eval --vocab " + vocabulary + " --images " + folder + " --rotate 10");
   ASSERT_EQ(eval.status, 0) << eval.output;
   EXPECT_NE(eval.output.find("database: 4 images, queries: 4"), std::string::npos) << eval.output;
@@ -77,18 +62,17 @@ TEST_F(VocabCommandTest, TrainInfoAndEval) {
 
 TEST_F(VocabCommandTest, BadInputExitsTwoWithAnError) {
   const std::string folder = test::ScratchFolder("cli_errors");
-  const CommandResult missing = RunCli("vocab info " + folder + "/missing.bin");
+  const CliRun missing = RunCli("vocab info " + folder + "/missing.bin");
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.output.find("error: " + folder + "/missing.bin: cannot open"),
             std::string::npos)
       << missing.output;
   test::WriteText(folder + "/bad.txt", "10 6 3 0\n");
-  const CommandResult scoring = RunCli("vocab info " + folder + "/bad.txt");
+  const CliRun scoring = RunCli("vocab info " + folder + "/bad.txt");
   EXPECT_EQ(scoring.status, 2);
   EXPECT_NE(scoring.output.find("line 1: unsupported scoring type 3"), std::string::npos)
       << scoring.output;
-  const CommandResult format =
-      RunCli("vocab train --images " + folder + " --out x.bin --format yaml");
+  const CliRun format = RunCli("vocab train --images " + folder + " --out x.bin --format yaml");
   EXPECT_EQ(format.status, 2);
   EXPECT_NE(format.output.find("error: vocabulary format 'yaml' unknown"), std::string::npos)
       << format.output;

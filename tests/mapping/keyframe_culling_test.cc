@@ -101,6 +101,20 @@ TEST(KeyFrameCullingTest, ChildrenOfACulledKeyFrameMoveToALiveParent) {
   }
 }
 
+// Shifts the world under `parent` by a fixed twist D, as a loop correction would: the recorder's
+// first frame, tracked at T_cw relative to a keyframe whose parent is `parent`, must move with it.
+void ExpectFirstFrameFollowsACorrectionOf(KeyFrame& parent, const SE3& T_cw,
+                                          const TrajectoryRecorder& recorder) {
+  Vector6d twist;
+  twist << 0.1, -0.05, 0.02, 0.01, 0.03, -0.02;
+  const SE3 D = SE3::Exp(twist);
+  parent.SetPose(parent.Pose() * D);
+  const SE3 expected_T_wc = (T_cw * D).Inverse();
+  const SE3 actual_T_wc = recorder.CameraTrajectory()[0].T_wc;
+  EXPECT_LT((actual_T_wc.Translation() - expected_T_wc.Translation()).norm(), 1e-9);
+  EXPECT_LT(RotationAngle(actual_T_wc.Inverse() * expected_T_wc), 1e-9);
+}
+
 TEST(KeyFrameCullingTest, FramesOfACulledKeyFrameFollowItsParent) {
   SyntheticScene scene;
   SyntheticMap map;
@@ -119,14 +133,7 @@ TEST(KeyFrameCullingTest, FramesOfACulledKeyFrameFollowItsParent) {
       (recorder.CameraTrajectory()[0].T_wc.Translation() - T_cw.Inverse().Translation()).norm(),
       1e-12);
   // A later correction of the parent (here a shift of the world by D) carries the frame along.
-  Vector6d twist;
-  twist << 0.1, -0.05, 0.02, 0.01, 0.03, -0.02;
-  const SE3 D = SE3::Exp(twist);
-  parent->SetPose(parent->Pose() * D);
-  const SE3 expected_T_wc = (T_cw * D).Inverse();
-  const SE3 actual_T_wc = recorder.CameraTrajectory()[0].T_wc;
-  EXPECT_LT((actual_T_wc.Translation() - expected_T_wc.Translation()).norm(), 1e-9);
-  EXPECT_LT(RotationAngle(actual_T_wc.Inverse() * expected_T_wc), 1e-9);
+  ExpectFirstFrameFollowsACorrectionOf(*parent, T_cw, recorder);
 }
 
 TEST(KeyFrameCullingTest, TheTrajectoryDoesNotKeepRemovedKeyFramesOrTheirPoints) {
@@ -156,14 +163,7 @@ TEST(KeyFrameCullingTest, TheTrajectoryDoesNotKeepRemovedKeyFramesOrTheirPoints)
   EXPECT_LT(
       (recorder.CameraTrajectory()[0].T_wc.Translation() - T_cw.Inverse().Translation()).norm(),
       1e-12);
-  Vector6d twist;
-  twist << 0.1, -0.05, 0.02, 0.01, 0.03, -0.02;
-  const SE3 D = SE3::Exp(twist);
-  parent->SetPose(parent->Pose() * D);
-  const SE3 expected_T_wc = (T_cw * D).Inverse();
-  const SE3 actual_T_wc = recorder.CameraTrajectory()[0].T_wc;
-  EXPECT_LT((actual_T_wc.Translation() - expected_T_wc.Translation()).norm(), 1e-9);
-  EXPECT_LT(RotationAngle(actual_T_wc.Inverse() * expected_T_wc), 1e-9);
+  ExpectFirstFrameFollowsACorrectionOf(*parent, T_cw, recorder);
 }
 
 }  // namespace

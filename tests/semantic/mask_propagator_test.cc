@@ -56,6 +56,18 @@ class MaskPropagatorTest : public ::testing::TestWithParam<MaskPropagation> {
     options.method = GetParam();
     return MaskPropagator(options);
   }
+
+  struct Overlap {
+    double before = 0.0;  // IoU of the mask as it was with the truth
+    double after = 0.0;   // IoU of the carried mask with the truth
+  };
+  // Both overlaps, also recorded as the test's properties iou_before and iou_after.
+  static Overlap RecordOverlap(const cv::Mat& mask, const cv::Mat& carried, const cv::Mat& truth) {
+    const Overlap overlap{MaskIoU(mask, truth), MaskIoU(carried, truth)};
+    RecordProperty("iou_before", std::to_string(overlap.before));
+    RecordProperty("iou_after", std::to_string(overlap.after));
+    return overlap;
+  }
 };
 
 TEST_P(MaskPropagatorTest, CameraShiftIsFollowed) {
@@ -68,10 +80,7 @@ TEST_P(MaskPropagatorTest, CameraShiftIsFollowed) {
   ASSERT_EQ(moved.instances.size(), 1u);
   EXPECT_EQ(moved.frame_index, 7u);
   EXPECT_DOUBLE_EQ(moved.timestamp, 2.0);
-  const double before = MaskIoU(mask, truth);
-  const double after = MaskIoU(moved.instances[0].mask, truth);
-  RecordProperty("iou_before", std::to_string(before));
-  RecordProperty("iou_after", std::to_string(after));
+  const auto [before, after] = RecordOverlap(mask, moved.instances[0].mask, truth);
   EXPECT_LT(before, 0.80);
   EXPECT_GT(after, 0.95);
   EXPECT_GT(after - before, 0.15);
@@ -92,10 +101,7 @@ TEST_P(MaskPropagatorTest, MovingObjectOnAStaticBackgroundIsFollowed) {
   Shifted(object, 14, 9).copyTo(to, truth);
   const Segmentation moved = Propagator().Propagate(OneInstance(mask), from, to, 0.0, 1);
   ASSERT_EQ(moved.instances.size(), 1u);
-  const double before = MaskIoU(mask, truth);
-  const double after = MaskIoU(moved.instances[0].mask, truth);
-  RecordProperty("iou_before", std::to_string(before));
-  RecordProperty("iou_after", std::to_string(after));
+  const auto [before, after] = RecordOverlap(mask, moved.instances[0].mask, truth);
   EXPECT_LT(before, 0.80);
   EXPECT_GT(after, 0.90);
   EXPECT_GT(after - before, 0.12);
@@ -121,10 +127,7 @@ TEST_P(MaskPropagatorTest, TurningObjectIsFollowedBySimilarity) {
   moved_object.copyTo(to, truth);
   const Segmentation moved = Propagator().Propagate(OneInstance(mask), from, to, 0.0, 1);
   ASSERT_EQ(moved.instances.size(), 1u);
-  const double before = MaskIoU(mask, truth);
-  const double after = MaskIoU(moved.instances[0].mask, truth);
-  RecordProperty("iou_before", std::to_string(before));
-  RecordProperty("iou_after", std::to_string(after));
+  const auto [before, after] = RecordOverlap(mask, moved.instances[0].mask, truth);
   EXPECT_LT(before, 0.80);
   EXPECT_GT(after, 0.95);
 }

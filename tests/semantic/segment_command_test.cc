@@ -11,28 +11,15 @@
 #include <string>
 
 #include "test_data.h"
+#include "test_support/cli_run.h"
 
 namespace drvslam {
 namespace {
 
+using drvslam::testing::CliRun;
+using drvslam::testing::RunCli;
+
 namespace fs = std::filesystem;
-
-struct RunResult {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-RunResult RunCli(const std::string& arguments) {
-  RunResult result;
-  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  while (fgets(buffer, sizeof(buffer), pipe)) result.output += buffer;
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
 
 class SegmentCommandTest : public ::testing::Test {
  protected:
@@ -49,7 +36,7 @@ TEST_F(SegmentCommandTest, WritesJsonOverlaysAndPersonCutouts) {
   DRVSLAM_SKIP_IF_MISSING(image, "basketball1.png");
   DRVSLAM_SKIP_IF_MISSING(video, "vtest.avi");
   const fs::path json = dir_ / "instances.json";
-  const RunResult run =
+  const CliRun run =
       RunCli("segment --model " + model + " " + image + " " + video +
              " --every 25 --max-frames 2 --json " + json.string() + " --overlay " +
              (dir_ / "overlay").string() + " --cutouts " + (dir_ / "cutouts").string());
@@ -96,25 +83,25 @@ TEST_F(SegmentCommandTest, WritesJsonOverlaysAndPersonCutouts) {
 TEST_F(SegmentCommandTest, BadInputsExitWithStatusTwoAndNameTheFile) {
   const std::string image = testing::OpenCvData("basketball1.png");
   DRVSLAM_SKIP_IF_MISSING(image, "basketball1.png");
-  const RunResult missing = RunCli("segment --model /nonexistent/m.onnx " + image);
+  const CliRun missing = RunCli("segment --model /nonexistent/m.onnx " + image);
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.output.find("error: /nonexistent/m.onnx"), std::string::npos) << missing.output;
 
   const std::string int8 = testing::SharedModel("yolov8n-seg_int8_dynamic.onnx");
   if (!int8.empty()) {
-    const RunResult refused = RunCli("segment --model " + int8 + " " + image);
+    const CliRun refused = RunCli("segment --model " + int8 + " " + image);
     EXPECT_EQ(refused.status, 2);
     EXPECT_NE(refused.output.find("OpenCV DNN cannot load this model"), std::string::npos)
         << refused.output;
   }
   const std::string model = testing::SharedModel("yolov8n-seg-320x256.onnx");
   if (!model.empty()) {
-    const RunResult no_image = RunCli("segment --model " + model + " /nonexistent/x.png");
+    const CliRun no_image = RunCli("segment --model " + model + " /nonexistent/x.png");
     EXPECT_EQ(no_image.status, 2);
     EXPECT_NE(no_image.output.find("/nonexistent/x.png"), std::string::npos) << no_image.output;
     const std::string text = (dir_ / "notes.txt").string();
     std::ofstream(text) << "hello";
-    const RunResult not_image = RunCli("segment --model " + model + " " + text);
+    const CliRun not_image = RunCli("segment --model " + model + " " + text);
     EXPECT_EQ(not_image.status, 2);
     EXPECT_NE(not_image.output.find("neither an image nor a video"), std::string::npos)
         << not_image.output;

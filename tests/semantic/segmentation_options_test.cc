@@ -9,6 +9,7 @@
 #include "drvslam/core/coco_classes.h"
 #include "drvslam/core/error.h"
 #include "drvslam/semantic/class_table.h"
+#include "drvslam/semantic/segmenter_factory.h"
 #include "test_data.h"
 
 namespace drvslam {
@@ -45,11 +46,20 @@ TEST_F(SegmentationOptionsTest, DefaultsPassAndAbsentKeysKeepThem) {
   EXPECT_NO_THROW(defaults.Check());
   const SegmentationOptions loaded =
       LoadSegmentationOptions(SettingsFile(Write("Camera.fx: 500\n")));
-  EXPECT_EQ(loaded.backend, SegmenterBackend::kNone);
+  EXPECT_EQ(loaded.backend, SegmenterBackend::kAuto);
   EXPECT_DOUBLE_EQ(loaded.score_threshold, 0.25);
   EXPECT_EQ(loaded.moving_classes.size(), 12u);
   EXPECT_EQ(loaded.key_objects.size(), 9u);
   EXPECT_EQ(loaded.propagation, MaskPropagation::kObjects);
+}
+
+TEST_F(SegmentationOptionsTest, AutoIsTheDefaultBackendAndTheRuntimeBuildsNothingForIt) {
+  // `drvslam config --dump` writes the default back: it must load as the same backend.
+  const SegmentationOptions dumped =
+      LoadSegmentationOptions(SettingsFile(Write("Segmentation.backend: \"auto\"\n")));
+  EXPECT_EQ(dumped.backend, SegmenterBackend::kAuto);
+  EXPECT_EQ(ToString(dumped.backend), "auto");
+  EXPECT_EQ(CreateSegmenter(dumped), nullptr);
 }
 
 TEST_F(SegmentationOptionsTest, ReadsEveryKey) {

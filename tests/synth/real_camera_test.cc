@@ -83,6 +83,16 @@ SynthOptions SmallOptions(const std::string& scenario, int frames) {
 
 // --- Motion blur ---------------------------------------------------------------------------
 
+// The wall and the scene at each exposure offset, rendered by a plain renderer into *plain and by
+// one with `effects` into *with_effects.
+void RenderPlainAndWith(const RealCameraOptions& effects, const TriangleList& wall,
+                        const ShutterRenderer::SceneAt& scene, RenderBuffers* plain,
+                        RenderBuffers* with_effects) {
+  ShutterRenderer(TestCamera(), RealCameraOptions(), Unlit())
+      .Render(wall, TwoTextures(), scene, plain);
+  ShutterRenderer(TestCamera(), effects, Unlit()).Render(wall, TwoTextures(), scene, with_effects);
+}
+
 TEST(RealCameraTest, BlurOfAStillSceneChangesNothing) {
   const TriangleList wall = Wall();
   TriangleList movers;
@@ -94,11 +104,8 @@ TEST(RealCameraTest, BlurOfAStillSceneChangesNothing) {
   RealCameraOptions blur;
   blur.blur_exposure = 0.05;
   blur.blur_samples = 6;  // even: depth and masks then come from an extra centre render
-  const ShutterRenderer plain(TestCamera(), RealCameraOptions(), Unlit());
-  const ShutterRenderer blurred(TestCamera(), blur, Unlit());
   RenderBuffers a, b;
-  plain.Render(wall, TwoTextures(), still, &a);
-  blurred.Render(wall, TwoTextures(), still, &b);
+  RenderPlainAndWith(blur, wall, still, &a, &b);
   EXPECT_EQ(cv::norm(a.bgr, b.bgr, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(a.depth, b.depth, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(a.instance, b.instance, cv::NORM_INF), 0.0);
@@ -115,11 +122,8 @@ TEST(RealCameraTest, BlurSmearsAMovingActorOverItsPathAndKeepsTheMaskAtTheCentre
   RealCameraOptions blur;
   blur.blur_exposure = 0.04;
   blur.blur_samples = 9;
-  const ShutterRenderer plain(TestCamera(), RealCameraOptions(), Unlit());
-  const ShutterRenderer blurred(TestCamera(), blur, Unlit());
   RenderBuffers a, b;
-  plain.Render(wall, TwoTextures(), moving, &a);
-  blurred.Render(wall, TwoTextures(), moving, &b);
+  RenderPlainAndWith(blur, wall, moving, &a, &b);
   // Masks and depth are those of the exposure's centre.
   EXPECT_EQ(cv::norm(a.instance, b.instance, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(a.depth, b.depth, cv::NORM_INF), 0.0);
@@ -199,11 +203,9 @@ TEST(RealCameraTest, RollingShutterShearsAMovingBarByTheReadout) {
   RealCameraOptions options;
   options.rolling_shutter_readout = 0.04;
   options.rolling_shutter_steps = 480;
-  const ShutterRenderer plain(TestCamera(), RealCameraOptions(), Unlit());
   const ShutterRenderer rolling(TestCamera(), options, Unlit());
   RenderBuffers a, b;
-  plain.Render(wall, TwoTextures(), moving, &a);
-  rolling.Render(wall, TwoTextures(), moving, &b);
+  RenderPlainAndWith(options, wall, moving, &a, &b);
   const std::vector<int> still = LeftEdges(a.instance, 3), sheared = LeftEdges(b.instance, 3);
   // Continuous edge: 270.25 + 500 px/s * row offset; the first pixel centre right of it.
   for (const int row : {0, 60, 120, 239, 240, 300, 479}) {

@@ -1,37 +1,21 @@
 // Runs the built `drvslam synth` (DRVSLAM_CLI) the way a user would.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "test_folder.h"
+#include "test_support/cli_run.h"
 
 namespace drvslam::synth {
 namespace {
 
+using drvslam::testing::CliRun;
+using drvslam::testing::RunCli;
+
 using testing::ReadFileBytes;
 using testing::TestFolder;
-
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result RunCli(const std::string& arguments) {
-  Result result;
-  const std::string command = std::string(DRVSLAM_CLI) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  std::size_t read = 0;
-  while ((read = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0)
-    result.output.append(buffer, read);
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
 
 int CountFiles(const std::string& folder) {
   int count = 0;
@@ -43,7 +27,7 @@ int CountFiles(const std::string& folder) {
 TEST(SynthCliTest, WritesATumLayoutSequence) {
   TestFolder folder("cli");
   const std::string out = folder / "walking";
-  const Result result =
+  const CliRun result =
       RunCli("synth --scenario walking_xyz --frames 5 --width 320 --height 240 --out " + out);
   ASSERT_EQ(result.status, 0) << result.output;
   EXPECT_NE(result.output.find("frames:      5 at 320x240, 2 actors"), std::string::npos)
@@ -59,7 +43,7 @@ TEST(SynthCliTest, WritesATumLayoutSequence) {
   const std::string ground_truth = ReadFileBytes(out + "/groundtruth.txt");
   EXPECT_NE(ground_truth.find("1305031102.175304 "), std::string::npos);
   // Running again into the same folder replaces the earlier sequence.
-  const Result again =
+  const CliRun again =
       RunCli("synth --scenario static_xyz --frames 3 --width 160 --height 120 --out " + out);
   ASSERT_EQ(again.status, 0) << again.output;
   EXPECT_EQ(CountFiles(out + "/rgb"), 3);
@@ -85,14 +69,14 @@ TEST(SynthCliTest, BadInputExitsWithStatus2) {
        "error: --actors 2"},
   };
   for (const auto& c : cases) {
-    const Result result = RunCli(c.arguments);
+    const CliRun result = RunCli(c.arguments);
     EXPECT_EQ(result.status, 2) << c.arguments << "\n" << result.output;
     EXPECT_NE(result.output.find(c.expected), std::string::npos) << c.arguments << "\n"
                                                                  << result.output;
   }
   // A folder holding something else is never overwritten.
   testing::WriteFileText(folder / "precious.txt", "keep me");
-  const Result refused = RunCli("synth --scenario static_xyz --frames 2 --out " + folder.Path());
+  const CliRun refused = RunCli("synth --scenario static_xyz --frames 2 --out " + folder.Path());
   EXPECT_EQ(refused.status, 2);
   EXPECT_EQ(ReadFileBytes(folder / "precious.txt"), "keep me");
 }
@@ -100,7 +84,7 @@ TEST(SynthCliTest, BadInputExitsWithStatus2) {
 TEST(SynthCliTest, RealCameraPresetIsRecordedAndFlagsOverrideIt) {
   TestFolder folder("cli_real");
   const std::string out = folder / "handheld";
-  const Result result = RunCli(
+  const CliRun result = RunCli(
       "synth --scenario static_xyz --frames 4 --width 160 --height 120 --real-camera "
       "--blur-exposure 0 --depth-shift -1,0.5 --camera-speed 2 --out " +
       out);
@@ -115,7 +99,7 @@ TEST(SynthCliTest, RealCameraPresetIsRecordedAndFlagsOverrideIt) {
   }
   // dense-eval rebuilds the sequence from settings.yaml, camera speed included, and checks its
   // poses against groundtruth.txt.
-  const Result evaluated = RunCli("dense-eval --dataset " + out);
+  const CliRun evaluated = RunCli("dense-eval --dataset " + out);
   EXPECT_EQ(evaluated.status, 0) << evaluated.output;
 }
 
@@ -135,7 +119,7 @@ TEST(SynthCliTest, BadRealCameraValuesExitWithStatus2) {
       {"--camera-speed 0", "error: --camera-speed"},
   };
   for (const auto& c : cases) {
-    const Result result = RunCli(base + c.arguments + " --out " + folder / "x");
+    const CliRun result = RunCli(base + c.arguments + " --out " + folder / "x");
     EXPECT_EQ(result.status, 2) << c.arguments << "\n" << result.output;
     EXPECT_NE(result.output.find(c.expected), std::string::npos) << c.arguments << "\n"
                                                                  << result.output;
@@ -143,7 +127,7 @@ TEST(SynthCliTest, BadRealCameraValuesExitWithStatus2) {
 }
 
 TEST(SynthCliTest, HelpAndListDocumentTheOptions) {
-  const Result help = RunCli("synth --help");
+  const CliRun help = RunCli("synth --help");
   EXPECT_EQ(help.status, 0);
   for (const char* option :
        {"--scenario", "--frames", "--seed", "--trajectory", "--textures", "--actors", "--out",
@@ -152,7 +136,7 @@ TEST(SynthCliTest, HelpAndListDocumentTheOptions) {
         "--camera-speed"}) {
     EXPECT_NE(help.output.find(option), std::string::npos) << option;
   }
-  const Result list = RunCli("synth --list");
+  const CliRun list = RunCli("synth --list");
   EXPECT_EQ(list.status, 0);
   for (const char* name : {"walking_xyz", "walking_static", "walking_rpy", "walking_halfsphere",
                            "sitting_static", "sitting_xyz", "static_xyz", "static_halfsphere"}) {

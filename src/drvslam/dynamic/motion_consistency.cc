@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
+#include "drvslam/core/enum_names.h"
 #include "drvslam/core/error.h"
 #include "drvslam/core/pixel_index.h"
 #include "drvslam/semantic/mask_lookup.h"
@@ -28,15 +29,10 @@ void CheckMask(const cv::Mat& mask, const cv::Size& size, const char* what) {
 }  // namespace
 
 const char* MotionModelName(MotionModel model) {
-  switch (model) {
-    case MotionModel::kNone:
-      return "none";
-    case MotionModel::kFundamental:
-      return "fundamental";
-    case MotionModel::kHomography:
-      return "homography";
-  }
-  return "?";
+  static constexpr EnumName<MotionModel> kNames[] = {{MotionModel::kNone, "none"},
+                                                     {MotionModel::kFundamental, "fundamental"},
+                                                     {MotionModel::kHomography, "homography"}};
+  return NameOf(model, kNames, "?");
 }
 
 FlowImage BuildFlowImage(const cv::Mat& gray, const DynamicOptions& options) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "drvslam/core/enum_names.h"
 #include "drvslam/core/error.h"
 #include "drvslam/semantic/mask_lookup.h"
 
@@ -19,17 +20,12 @@ double Median(std::vector<double> values) {
 }  // namespace
 
 const char* UnlabelledVerdictName(UnlabelledVerdict verdict) {
-  switch (verdict) {
-    case UnlabelledVerdict::kTrusted:
-      return "trusted";
-    case UnlabelledVerdict::kBlurred:
-      return "blur";
-    case UnlabelledVerdict::kMisfit:
-      return "misfit";
-    case UnlabelledVerdict::kCameraFailure:
-      return "camera";
-  }
-  return "?";
+  static constexpr EnumName<UnlabelledVerdict> kNames[] = {
+      {UnlabelledVerdict::kTrusted, "trusted"},
+      {UnlabelledVerdict::kBlurred, "blur"},
+      {UnlabelledVerdict::kMisfit, "misfit"},
+      {UnlabelledVerdict::kCameraFailure, "camera"}};
+  return NameOf(verdict, kNames, "?");
 }
 
 UnlabelledEvidence WeighUnlabelledEvidence(const MotionConsistencyResult& motion,

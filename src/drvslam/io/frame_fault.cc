@@ -1,23 +1,18 @@
 #include "drvslam/io/frame_fault.h"
 
+#include "drvslam/core/enum_names.h"
+
 namespace drvslam {
 
 const char* FrameFaultName(FrameFault fault) {
-  switch (fault) {
-    case FrameFault::kMissingFile:
-      return "missing_file";
-    case FrameFault::kEmptyFile:
-      return "empty_file";
-    case FrameFault::kCorruptImage:
-      return "corrupt_image";
-    case FrameFault::kWrongSize:
-      return "wrong_size";
-    case FrameFault::kWrongType:
-      return "wrong_type";
-    case FrameFault::kTimestampNotIncreasing:
-      return "timestamp_not_increasing";
-  }
-  return "unknown";
+  static constexpr EnumName<FrameFault> kNames[] = {
+      {FrameFault::kMissingFile, "missing_file"},
+      {FrameFault::kEmptyFile, "empty_file"},
+      {FrameFault::kCorruptImage, "corrupt_image"},
+      {FrameFault::kWrongSize, "wrong_size"},
+      {FrameFault::kWrongType, "wrong_type"},
+      {FrameFault::kTimestampNotIncreasing, "timestamp_not_increasing"}};
+  return NameOf(fault, kNames, "unknown");
 }
 
 }  // namespace drvslam

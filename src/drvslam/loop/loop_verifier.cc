@@ -7,6 +7,7 @@
 #include "drvslam/feature/descriptor_distance.h"
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/pose_observations.h"
+#include "drvslam/match/search_window.h"
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/optim/rigid_transform_ransac.h"
 
@@ -66,21 +67,16 @@ int SearchByProjectionAtPose(const KeyFrame& keyframe, const SE3& T_cw,
   int added = 0;
   for (const auto& point : points) {
     if (!point || point->IsBad() || already.count(point->Id())) continue;
-    const Eigen::Vector3d position = point->Position();
-    const Eigen::Vector3d point_c = T_cw * position;
-    if (point_c.z() <= 0) continue;
-    const Eigen::Vector2d pixel = geometry.camera.Project(point_c);
-    if (!geometry.InBounds(pixel.x(), pixel.y())) continue;
-    const double distance = (position - center).norm();
-    if (distance < 0.8 * point->MinDistance() || distance > 1.2 * point->MaxDistance()) continue;
-    const int level = point->PredictLevel(distance, geometry.pyramid);
-    const double radius = radius_factor * geometry.pyramid.scale[level];
+    const std::optional<SearchWindow> window =
+        PredictSearchWindow(*point, T_cw, center, geometry, radius_factor);
+    if (!window) continue;
     const cv::Mat descriptor = point->Descriptor();
     if (descriptor.empty()) continue;
     int best = max_distance + 1;
     int best_index = -1;
     for (const std::size_t i :
-         features.FeaturesInArea(pixel.x(), pixel.y(), radius, level - 1, level + 1)) {
+         features.FeaturesInArea(window->pixel.x(), window->pixel.y(), window->radius,
+                                 window->level - 1, window->level + 1)) {
       if ((*matches)[i]) continue;
       const int d = DescriptorDistance(descriptor, features.Descriptor(i));
       if (d < best) {

@@ -5,6 +5,7 @@
 #include "drvslam/feature/descriptor_distance.h"
 #include "drvslam/map/map_point.h"
 #include "drvslam/match/rotation_consistency.h"
+#include "drvslam/match/search_window.h"
 
 namespace drvslam {
 
@@ -26,17 +27,11 @@ int SearchKeyFrameByProjection(Frame& frame, const KeyFrame& keyframe,
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& point = points[i];
     if (!point || point->IsBad() || found.count(point.get()) > 0) continue;
-    const Eigen::Vector3d position = point->Position();
-    const Eigen::Vector3d point_c = T_cw * position;
-    if (point_c.z() <= 0) continue;
-    const Eigen::Vector2d pixel = geometry.camera.Project(point_c);
-    if (!geometry.InBounds(pixel.x(), pixel.y())) continue;
-    const double distance = (position - center).norm();
-    if (distance < 0.8 * point->MinDistance() || distance > 1.2 * point->MaxDistance()) continue;
-    const int level = point->PredictLevel(distance, geometry.pyramid);
-    const double radius = options.radius_factor * geometry.pyramid.scale[level];
-    const auto candidates =
-        features.FeaturesInArea(pixel.x(), pixel.y(), radius, level - 1, level + 1);
+    const std::optional<SearchWindow> window =
+        PredictSearchWindow(*point, T_cw, center, geometry, options.radius_factor);
+    if (!window) continue;
+    const auto candidates = features.FeaturesInArea(
+        window->pixel.x(), window->pixel.y(), window->radius, window->level - 1, window->level + 1);
     if (candidates.empty()) continue;
     const cv::Mat descriptor = point->Descriptor();
     int best = 256, best_index = -1;

@@ -45,11 +45,8 @@ struct BundleProjectionFunctor {
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(pose + 4);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> point_w(point);
     const Eigen::Matrix<T, 3, 1> p = rotation * point_w + translation;
-    if (!(p.z() > T(kMinProjectionDepth))) return false;
-    Eigen::Map<Eigen::Matrix<T, kResiduals, 1>> r(residuals);
-    r = T(sqrt_information) *
-        (ProjectForPose<kResiduals, T>(intrinsics, p) - measured.template cast<T>());
-    return true;
+    return WeightedReprojectionResidual<kResiduals, T>(intrinsics, p, measured, sqrt_information,
+                                                       residuals);
   }
 
   ProjectionIntrinsics intrinsics;

@@ -45,6 +45,54 @@ Eigen::Matrix<T, kResiduals, 1> ProjectForPose(const ProjectionIntrinsics& k,
   return projection;
 }
 
+// The residual every reprojection cost shares: sqrt_information * (projection of the
+// camera-frame point p - measured). False, with nothing written, when p is not in front of the
+// camera (z <= kMinProjectionDepth).
+template <int kResiduals, typename T>
+bool WeightedReprojectionResidual(const ProjectionIntrinsics& k, const Eigen::Matrix<T, 3, 1>& p,
+                                  const Measurement<kResiduals>& measured, double sqrt_information,
+                                  T* residuals) {
+  if (!(p.z() > T(kMinProjectionDepth))) return false;
+  Eigen::Map<Eigen::Matrix<T, kResiduals, 1>> r(residuals);
+  r = T(sqrt_information) * (ProjectForPose<kResiduals, T>(k, p) - measured.template cast<T>());
+  return true;
+}
+
+// d(residual)/d(p) of WeightedReprojectionResidual at the camera-frame point p (z > 0).
+template <int kResiduals>
+Eigen::Matrix<double, kResiduals, 3> WeightedProjectionJacobian(const ProjectionIntrinsics& k,
+                                                                double sqrt_information,
+                                                                const Eigen::Vector3d& p) {
+  const double inv_z = 1.0 / p.z();
+  const double fx_z = sqrt_information * k.fx * inv_z;
+  const double fy_z = sqrt_information * k.fy * inv_z;
+  Eigen::Matrix<double, kResiduals, 3> d_r_d_p;
+  d_r_d_p.row(0) << fx_z, 0.0, -fx_z * p.x() * inv_z;
+  d_r_d_p.row(1) << 0.0, fy_z, -fy_z * p.y() * inv_z;
+  if constexpr (kResiduals == 3) {
+    const double bf = sqrt_information * k.bf;
+    d_r_d_p.row(2) << fx_z, 0.0, (-fx_z * p.x() + bf * inv_z) * inv_z;
+  }
+  return d_r_d_p;
+}
+
+// The ambient pose Jacobian (kResiduals x 7, row-major, as ceres wants it) of a residual whose
+// derivative by the camera-frame point p = R X + t is d_r_d_p; `rotated` is R X. With a left
+// twist (rho, phi), dp/drho = I and dp/dphi = -[p]x; composing with SE3Manifold's
+// MinusJacobian leaves d p / d q = -[R X]x * dphi/dq and d p / d t = I.
+template <int kResiduals>
+void WritePoseJacobian(const double* pose, const Eigen::Vector3d& rotated,
+                       const Eigen::Matrix<double, kResiduals, 3>& d_r_d_p, double* jacobian) {
+  const double w = pose[3];
+  const Eigen::Vector3d v(pose[0], pose[1], pose[2]);
+  Eigen::Matrix<double, 3, 4> d_phi_d_q;
+  d_phi_d_q.leftCols<3>() = 2.0 * (w * Eigen::Matrix3d::Identity() + Skew(v));
+  d_phi_d_q.col(3) = -2.0 * v;
+  Eigen::Map<Eigen::Matrix<double, kResiduals, kPoseAmbientSize, Eigen::RowMajor>> j(jacobian);
+  j.template leftCols<4>() = d_r_d_p * (-Skew(rotated) * d_phi_d_q);
+  j.template rightCols<3>() = d_r_d_p;
+}
+
 template <int kResiduals>
 class PoseProjectionCost final : public ceres::SizedCostFunction<kResiduals, kPoseAmbientSize> {
  public:
@@ -72,11 +120,8 @@ struct PoseProjectionFunctor {
     const Eigen::Map<const Eigen::Quaternion<T>> rotation(pose);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> translation(pose + 4);
     const Eigen::Matrix<T, 3, 1> p = rotation * point_w.cast<T>() + translation;
-    if (!(p.z() > T(kMinProjectionDepth))) return false;
-    Eigen::Map<Eigen::Matrix<T, kResiduals, 1>> r(residuals);
-    r = T(sqrt_information) *
-        (ProjectForPose<kResiduals, T>(intrinsics, p) - measured.template cast<T>());
-    return true;
+    return WeightedReprojectionResidual<kResiduals, T>(intrinsics, p, measured, sqrt_information,
+                                                       residuals);
   }
 
   ProjectionIntrinsics intrinsics;

@@ -20,7 +20,8 @@ const Choices<SegmenterBackend>& BackendChoices() {
   static const Choices<SegmenterBackend> choices = {{"yolo", SegmenterBackend::kYolo},
                                                     {"masks", SegmenterBackend::kMaskFiles},
                                                     {"gt", SegmenterBackend::kGroundTruth},
-                                                    {"none", SegmenterBackend::kNone}};
+                                                    {"none", SegmenterBackend::kNone},
+                                                    {"auto", SegmenterBackend::kAuto}};
   return choices;
 }
 
@@ -44,9 +45,11 @@ const OptionTable<SegmentationOptions>& SegmentationOptionTable() {
     OptionTable<S> t("Segmentation",
                      "which backend segments the frames, the network's thresholds and device, "
                      "mask files, and which classes may move or matter to the dense map");
-    t.Choice("backend", &S::backend, BackendChoices(),
-             "yolo: the ONNX network; masks: mask files; gt: a synthetic sequence's ground truth "
-             "(an oracle); none.")
+    t.Choice(
+         "backend", &S::backend, BackendChoices(),
+         "yolo: the ONNX network; masks: mask files; gt: a synthetic sequence's ground truth "
+         "(an oracle); none; auto: the run's default (gt for a sequence with ground-truth masks, "
+         "else none).")
         .Text("model", &S::model, "YOLOv8/YOLO11-seg ONNX file (yolo).")
         .List("classNames", &S::class_names,
               "Class names overriding the model's metadata (empty: the model's).")

@@ -11,7 +11,11 @@
 
 namespace drvslam {
 
-enum class SegmenterBackend { kYolo, kMaskFiles, kGroundTruth, kNone };
+// kAuto: the run's default, so that a settings file can say "as if I named no backend" (a
+// `drvslam config --dump` file does): `drvslam run` and `benchmark` take gt for a sequence with
+// ground-truth masks (masks/ and instances.txt, a synthetic sequence), else none; the runtime
+// library, which knows no dataset, creates no segmenter for it (CreateSegmenter).
+enum class SegmenterBackend { kYolo, kMaskFiles, kGroundTruth, kNone, kAuto };
 // kAuto picks CUDA when OpenCV was built with it, else OpenCV's own CPU code.
 enum class DnnBackend { kAuto, kOpenCv, kCuda };
 enum class DnnTarget { kAuto, kCpu, kOpenCl, kCuda, kCudaFp16 };
@@ -25,7 +29,7 @@ enum class MaskNaming { kAuto, kTimestamp, kIndex };
 enum class MaskPropagation { kDenseFlow, kSparseFlow, kNone, kObjects };
 
 struct SegmentationOptions {
-  SegmenterBackend backend = SegmenterBackend::kNone;
+  SegmenterBackend backend = SegmenterBackend::kAuto;
   std::string model;                     // ONNX file (yolo)
   std::vector<std::string> class_names;  // overrides the model's metadata names when set
   double score_threshold = 0.25;
@@ -80,7 +84,8 @@ const OptionTable<SegmentationOptions>& SegmentationOptionTable();
 // name the file and the key.
 SegmentationOptions LoadSegmentationOptions(const SettingsFile& file);
 
-// Settings spellings of the enums ("yolo", "masks", "gt", "none", ...), for logs and help text.
+// Settings spellings of the enums ("yolo", "masks", "gt", "none", "auto", ...), for logs and help
+// text.
 std::string ToString(SegmenterBackend backend);
 std::string ToString(MaskPropagation propagation);
 // Parses a backend name; throws Error naming `key` on anything else.

@@ -27,6 +27,7 @@ std::unique_ptr<Segmenter> CreateSegmenter(const SegmentationOptions& options,
           "Segmentation.backend gt: the ground-truth segmenter is an evaluation tool, not part "
           "of the runtime library; build it with CreateEvaluationSegmenter (drvslam_tools)");
     case SegmenterBackend::kNone:
+    case SegmenterBackend::kAuto:  // no dataset to take a default from: no segmenter
       return nullptr;
   }
   return nullptr;

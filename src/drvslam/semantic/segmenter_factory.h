@@ -12,7 +12,7 @@
 namespace drvslam {
 
 // yolo: options.model; masks: options.masks_dir (relative paths under `dataset_dir`), with
-// `frame_names` (each frame's colour image file) when known; none: nullptr. Throws
+// `frame_names` (each frame's colour image file) when known; none and auto: nullptr. Throws
 // drvslam::Error from the backend's constructor, and for gt: ground-truth masks are an
 // evaluation backend (tools/truth/evaluation_segmenter_factory.h builds it).
 std::unique_ptr<Segmenter> CreateSegmenter(const SegmentationOptions& options,

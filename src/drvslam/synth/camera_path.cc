@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "drvslam/core/enum_names.h"
 #include "drvslam/core/error.h"
 #include "drvslam/synth/random.h"
 
@@ -67,21 +68,11 @@ Eigen::Vector3d RecordedUp(const Trajectory& recorded) {
 }  // namespace
 
 std::string PathKindName(PathKind kind) {
-  switch (kind) {
-    case PathKind::kXyz:
-      return "xyz";
-    case PathKind::kStatic:
-      return "static";
-    case PathKind::kRpy:
-      return "rpy";
-    case PathKind::kHalfsphere:
-      return "halfsphere";
-    case PathKind::kReplay:
-      return "replay";
-    case PathKind::kCircuit:
-      return "circuit";
-  }
-  return "unknown";
+  static constexpr EnumName<PathKind> kNames[] = {
+      {PathKind::kXyz, "xyz"},       {PathKind::kStatic, "static"},
+      {PathKind::kRpy, "rpy"},       {PathKind::kHalfsphere, "halfsphere"},
+      {PathKind::kReplay, "replay"}, {PathKind::kCircuit, "circuit"}};
+  return NameOf(kind, kNames, "unknown");
 }
 
 CameraPath CameraPath::Procedural(PathKind kind, const ViewAnchor& anchor, uint64_t seed) {

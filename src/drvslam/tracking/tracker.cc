@@ -5,6 +5,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "drvslam/core/enum_names.h"
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/pose_observations.h"
 #include "drvslam/tracking/keyframe_factory.h"
@@ -28,15 +29,11 @@ constexpr double kMinViewCos = 0.5;
 }  // namespace
 
 const char* TrackingStateName(TrackingState state) {
-  switch (state) {
-    case TrackingState::kNotInitialized:
-      return "not initialized";
-    case TrackingState::kOk:
-      return "ok";
-    case TrackingState::kLost:
-      return "lost";
-  }
-  return "unknown";
+  static constexpr EnumName<TrackingState> kNames[] = {
+      {TrackingState::kNotInitialized, "not initialized"},
+      {TrackingState::kOk, "ok"},
+      {TrackingState::kLost, "lost"}};
+  return NameOf(state, kNames, "unknown");
 }
 
 Tracker::Tracker(Map& map, const TrackerOptions& options, double fps)

@@ -225,6 +225,7 @@ std::string FormatRunCommand(const RunOptions& options) {
   add("--dynamic", options.dynamic.dynamic);
   add("--dense", options.dense);
   add("--loop", options.loop);
+  if (options.strict_settings) command += " --strict-settings";
   return command;
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "drvslam/core/enum_names.h"
 #include "drvslam/core/error.h"
 
 namespace drvslam {
@@ -25,15 +26,10 @@ std::string Printf(const char* format, ...) {
 }
 
 const char* StatusName(RunStatus status) {
-  switch (status) {
-    case RunStatus::kOk:
-      return "ok";
-    case RunStatus::kFailed:
-      return "failed";
-    case RunStatus::kInterrupted:
-      return "interrupted";
-  }
-  return "?";
+  static constexpr EnumName<RunStatus> kNames[] = {{RunStatus::kOk, "ok"},
+                                                   {RunStatus::kFailed, "failed"},
+                                                   {RunStatus::kInterrupted, "interrupted"}};
+  return NameOf(status, kNames, "?");
 }
 
 // Markdown table cells cannot hold '|' or line breaks.

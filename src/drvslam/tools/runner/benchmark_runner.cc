@@ -16,6 +16,7 @@
 #include "drvslam/eval/ate.h"
 #include "drvslam/eval/eval_report.h"
 #include "drvslam/eval/rpe.h"
+#include "drvslam/settings_registry.h"
 #include "drvslam/tools/runner/benchmark_report.h"
 #include "drvslam/tools/runner/dynamic_run_setup.h"
 
@@ -27,28 +28,30 @@ namespace fs = std::filesystem;
 struct PreparedEntry {
   BenchmarkEntryResult result;
   Trajectory groundtruth;
+  bool strict_settings = false;
 };
 
 // The segmenter the entry's runs will use, through the same resolution RunSequence applies
 // (ResolveDynamicRun on the settings file RunSequence would read). Building the segmenter here
-// also proves, before any run, that its model or masks load.
-void ResolveSegmenter(const BenchmarkEntry& entry, BenchmarkEntryResult* result) {
+// also proves, before any run, that its model or masks load; `strict_settings` makes an unknown
+// key in the settings file an error here, as every run would find it.
+void ResolveSegmenter(const BenchmarkEntry& entry, bool strict_settings,
+                      BenchmarkEntryResult* result) {
   std::string config = entry.config;
   const fs::path dataset_settings = fs::path(entry.dataset) / "settings.yaml";
   std::error_code error;
   if (config.empty() && fs::exists(dataset_settings, error)) config = dataset_settings.string();
   SegmentationOptions segmentation;
   DynamicOptions dynamic;
-  bool backend_in_settings = false;
   if (!config.empty()) {
     const SettingsFile file(config);
     segmentation = LoadSegmentationOptions(file);
-    backend_in_settings = file.Has("Segmentation.backend");
     dynamic = LoadDynamicOptions(file);
+    if (strict_settings) CheckSettingsKeys(file, true);
   }
   const RunOptions run = ToRunOptions(entry, "");
   const DynamicRunSetup setup =
-      ResolveDynamicRun(run.dynamic, entry.dataset, segmentation, backend_in_settings, dynamic);
+      ResolveDynamicRun(run.dynamic, entry.dataset, segmentation, dynamic);
   result->segmenter = ToString(setup.backend);
   result->dynamic_on = setup.config.has_value();
   result->segmenter_used = result->dynamic_on && setup.backend != SegmenterBackend::kNone;
@@ -69,15 +72,18 @@ std::vector<PreparedEntry> Prepare(const BenchmarkOptions& options) {
     PreparedEntry item;
     item.result.entry = entry;
     item.result.runs_requested = entry.runs.value_or(options.runs);
+    item.strict_settings = options.strict_settings;
     try {
-      ResolveSegmenter(entry, &item.result);
+      ResolveSegmenter(entry, options.strict_settings, &item.result);
       item.groundtruth = ReadTumTrajectory((fs::path(entry.dataset) / "groundtruth.txt").string());
     } catch (const std::exception& e) {
       // The segmenter's own library (OpenCV DNN) may throw its own exceptions.
       throw Error(entry.origin + ": " + e.what());
     }
     const fs::path first_run = fs::path(options.out_dir) / entry.name / "run_1";
-    item.result.run_command = FormatRunCommand(ToRunOptions(entry, first_run.string()));
+    RunOptions first_run_options = ToRunOptions(entry, first_run.string());
+    first_run_options.strict_settings = options.strict_settings;
+    item.result.run_command = FormatRunCommand(first_run_options);
     prepared.push_back(std::move(item));
   }
   return prepared;
@@ -149,7 +155,8 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
   BenchmarkRun run;
   run.index = index;
   run.out_dir = run_dir.string();
-  const RunOptions options = ToRunOptions(prepared.result.entry, run.out_dir);
+  RunOptions options = ToRunOptions(prepared.result.entry, run.out_dir);
+  options.strict_settings = prepared.strict_settings;
   const auto started = std::chrono::steady_clock::now();
   const auto seconds_since_start = [&started] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -22,6 +22,9 @@ struct BenchmarkOptions {
   int runs = 5;  // per entry, unless the entry sets its own
   std::string out_dir = "benchmark_out";
   std::string command;  // the `drvslam benchmark` command line, quoted in the report
+  // --strict-settings: every run treats an unknown settings key as an error (RunOptions), and
+  // each entry's settings file is checked so before the first run starts.
+  bool strict_settings = false;
 };
 
 enum class RunStatus { kOk, kFailed, kInterrupted };

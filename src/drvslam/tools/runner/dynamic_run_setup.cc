@@ -29,6 +29,8 @@ std::string SegmenterLabel(SegmenterBackend backend, const std::string& model) {
       return "yolo (" + fs::path(model).filename().string() + ")";
     case SegmenterBackend::kMaskFiles:
       return "masks (mask files)";
+    case SegmenterBackend::kAuto:  // ResolveDynamicRun replaces it before any run
+      return "auto";
     case SegmenterBackend::kNone:
       break;
   }
@@ -36,8 +38,7 @@ std::string SegmenterLabel(SegmenterBackend backend, const std::string& model) {
 }
 
 DynamicRunSetup ResolveDynamicRun(const DynamicRunChoice& choice, const std::string& dataset_dir,
-                                  SegmentationOptions segmentation, bool backend_in_settings,
-                                  const DynamicOptions& dynamic) {
+                                  SegmentationOptions segmentation, const DynamicOptions& dynamic) {
   if (!choice.model.empty()) segmentation.model = choice.model;
   bool implicit_ground_truth = false;
   if (!choice.segmenter.empty()) {
@@ -45,7 +46,8 @@ DynamicRunSetup ResolveDynamicRun(const DynamicRunChoice& choice, const std::str
   } else if (!choice.model.empty()) {
     // A model on the command line says which segmenter is wanted, masks on disk or not.
     segmentation.backend = SegmenterBackend::kYolo;
-  } else if (!backend_in_settings) {
+  }
+  if (segmentation.backend == SegmenterBackend::kAuto) {
     segmentation.backend =
         HasGroundTruthMasks(dataset_dir) ? SegmenterBackend::kGroundTruth : SegmenterBackend::kNone;
     implicit_ground_truth = segmentation.backend == SegmenterBackend::kGroundTruth;

@@ -15,8 +15,9 @@
 namespace drvslam {
 
 struct DynamicRunChoice {
-  // yolo | masks | gt | none; empty: yolo when a model is given, else Segmentation.backend when
-  // the settings file sets it, else gt when the dataset has masks/ and instances.txt, else none.
+  // yolo | masks | gt | none | auto; empty: yolo when a model is given, else
+  // Segmentation.backend. auto (the key's default): gt when the dataset has masks/ and
+  // instances.txt, else none.
   std::string segmenter;
   std::string model;    // ONNX file for yolo (overrides Segmentation.model)
   std::string dynamic;  // on | off; empty: on exactly when a segmenter is active
@@ -40,13 +41,12 @@ struct DynamicRunSetup {
 // The label of DynamicRunSetup::segmenter_label for a backend (`model`: yolo's ONNX file).
 std::string SegmenterLabel(SegmenterBackend backend, const std::string& model);
 
-// `segmentation` / `dynamic`: what the settings file holds (defaults without one);
-// `backend_in_settings`: whether it set Segmentation.backend. Creates the segmenter only when
+// `segmentation` / `dynamic`: what the settings file holds (defaults without one; the default
+// backend is auto, resolved here from the dataset). Creates the segmenter only when
 // dynamic handling is on. Throws drvslam::Error naming the option (--segmenter, --dynamic,
 // --model) or the backend's file when a choice is invalid or the segmenter cannot be built.
 DynamicRunSetup ResolveDynamicRun(const DynamicRunChoice& choice, const std::string& dataset_dir,
-                                  SegmentationOptions segmentation, bool backend_in_settings,
-                                  const DynamicOptions& dynamic);
+                                  SegmentationOptions segmentation, const DynamicOptions& dynamic);
 
 // Ground-truth motion of the objects of a synthetic sequence, for scoring motion states.
 class DatasetMotionTruth {

@@ -33,7 +33,6 @@ struct ResolvedSettings {
   TrackerOptions tracker;
   LocalMappingOptions mapping;
   SegmentationOptions segmentation;
-  bool segmentation_backend_set = false;
   DynamicOptions dynamic;
   RelocalizationOptions relocalization;
   DenseMapOptions dense;
@@ -57,7 +56,6 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   resolved.tracker = LoadTrackerOptions(file);
   resolved.mapping = LoadLocalMappingOptions(file);
   resolved.segmentation = LoadSegmentationOptions(file);
-  resolved.segmentation_backend_set = file.Has("Segmentation.backend");
   resolved.dynamic = LoadDynamicOptions(file);
   resolved.relocalization = LoadRelocalizationOptions(file);
   resolved.dense = LoadDenseMapOptions(file);
@@ -144,8 +142,7 @@ RunSummary RunSequence(const RunOptions& options,
     system_options.dense->enabled = options.dense == "on";
   }
   const DynamicRunSetup dynamic =
-      ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation,
-                        resolved.segmentation_backend_set, resolved.dynamic);
+      ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation, resolved.dynamic);
   system_options.dynamic = dynamic.config;
   const std::unique_ptr<DatasetMotionTruth> motion_truth =
       dynamic.config ? DatasetMotionTruth::Open(options.dataset, dynamic.backend) : nullptr;
