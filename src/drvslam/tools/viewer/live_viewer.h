@@ -36,7 +36,7 @@ struct LiveViewerOptions {
   std::string ground_truth;
   // Dense points the page receives at most; later chunks are left out and the page says so.
   std::size_t dense_budget = 400000;
-  double dense_voxel_m = 0.02;  // a dense point is sent once per voxel of this size
+  double dense_voxel_m = 0.01;  // a dense point is sent once per voxel of this size
   double map_interval_s = 1.0;  // sparse map, keyframes, loops, ground truth
   double dense_interval_s = 2.0;
   double image_interval_s = 0.1;  // at most 10 images a second
