@@ -65,11 +65,18 @@ export class MapScene {
     this.denseChunks = [];
     this.fitted = false;
     this.scale = 1;
+    // Drawn only after a change (new data, the mouse, a resize): an idle page costs no CPU,
+    // which matters when the browser shares the machine with the run.
+    this.dirty = true;
+    this.controls.addEventListener('change', () => { this.dirty = true; });
     this.resize();
     window.addEventListener('resize', () => this.resize());
     const loop = () => {
       this.controls.update();
-      this.renderer.render(this.scene, this.camera);
+      if (this.dirty) {
+        this.dirty = false;
+        this.renderer.render(this.scene, this.camera);
+      }
       requestAnimationFrame(loop);
     };
     requestAnimationFrame(loop);
@@ -82,6 +89,7 @@ export class MapScene {
     this.renderer.setSize(width, height, false);
     this.camera.aspect = width / Math.max(1, height);
     this.camera.updateProjectionMatrix();
+    this.dirty = true;
   }
 
   replace(name, object) {
@@ -91,6 +99,7 @@ export class MapScene {
     }
     this.objects[name] = object;
     if (object) this.scene.add(object);
+    this.dirty = true;
   }
 
   setSparse(positions) {
@@ -114,6 +123,7 @@ export class MapScene {
     const points = new THREE.Points(geometry, material);
     this.denseChunks.push(points);
     this.scene.add(points);
+    this.dirty = true;
   }
 
   clearDense() {
@@ -122,6 +132,7 @@ export class MapScene {
       chunk.geometry.dispose();
     }
     this.denseChunks = [];
+    this.dirty = true;
   }
 
   setTrajectory(poses) {
@@ -189,6 +200,7 @@ export class MapScene {
     this.camera.near = size / 500;
     this.camera.far = size * 200;
     this.camera.updateProjectionMatrix();
+    this.dirty = true;
     this.fitted = poses.length > 1;
   }
 }

@@ -100,7 +100,16 @@ void LiveViewer::OnFrame(const FrameObservation& o) {
   frame.timestamp = o.track->timestamp;
   frame.state = o.track->state;
   frame.inliers = o.track->inliers;
-  frame.bgr = o.bgr->clone();
+  {
+    // A recycled buffer: allocating (and page-faulting) a fresh image per frame on the tracking
+    // thread showed up as stalls of tens of ms on a loaded machine.
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!spare_images_.empty()) {
+      frame.bgr = std::move(spare_images_.back());
+      spare_images_.pop_back();
+    }
+  }
+  o.bgr->copyTo(frame.bgr);
   if (o.dynamic) {
     frame.dynamic = true;
     frame.instances = o.dynamic->instances;
@@ -118,7 +127,9 @@ void LiveViewer::OnFrame(const FrameObservation& o) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (o.track->pose_valid) pending_->poses.push_back({o.track->timestamp, o.track->T_wc});
-    pending_->latest = std::move(frame);  // replaces a frame the viewer thread did not take
+    // Replaces a frame the viewer thread did not take; its image goes back to the spares.
+    if (pending_->latest) RecycleImage(std::move(pending_->latest->bgr));
+    pending_->latest = std::move(frame);
     ++pending_->arrivals;
   }
   wake_.notify_one();
@@ -159,6 +170,8 @@ void LiveViewer::Publish(Pending& taken, bool finishing, double now, double* nex
       PublishImage(*taken.latest);
       *next_image = now + options_.image_interval_s;
     }
+    std::lock_guard<std::mutex> lock(mutex_);
+    RecycleImage(std::move(taken.latest->bgr));
   }
   if (finishing || now >= *next_map) {
     PublishMap();
@@ -169,6 +182,13 @@ void LiveViewer::Publish(Pending& taken, bool finishing, double now, double* nex
   if (finishing || now >= *next_dense) {
     PublishDense();
     *next_dense = now + options_.dense_interval_s;
+  }
+}
+
+void LiveViewer::RecycleImage(cv::Mat image) {
+  // Only a buffer nobody else holds can be written again; two cover the frame in flight.
+  if (image.u && image.u->refcount == 1 && spare_images_.size() < 2) {
+    spare_images_.push_back(std::move(image));
   }
 }
 

@@ -4,11 +4,11 @@
 // (green) and removed (red) features, tracking state, fps, per-stage times and loop closures.
 //
 // Threads: OnFrame runs on the tracking thread and only copies: the pose into a list, the image
-// (one clone) and the dynamic report (masks by reference count) into a latest-only slot, which
-// the next frame overwrites when the viewer thread has not taken it yet. The viewer thread
-// draws, encodes JPEG and JSON, reads the map, the dense map and the loop closures, and hands
-// messages to WebServer, whose clients each have a bounded backlog: a slow or closed browser
-// loses updates, and tracking never waits for it.
+// (copied into a recycled buffer) and the dynamic report (masks by reference count) into a
+// latest-only slot, which the next frame overwrites when the viewer thread has not taken it yet.
+// The viewer thread draws, encodes JPEG and JSON, reads the map, the dense map and the loop
+// closures, and hands messages to WebServer, whose clients each have a bounded backlog: a slow or
+// closed browser loses updates, and tracking never waits for it.
 #pragma once
 
 #include <condition_variable>
@@ -67,6 +67,8 @@ class LiveViewer : public FrameObserver {
   struct Pending;
 
   void Run();
+  // Keeps a frame's image buffer for a later frame (caller holds mutex_).
+  void RecycleImage(cv::Mat image);
   // One round of the viewer thread: what `taken` holds, and what is due at `now` (seconds).
   void Publish(Pending& taken, bool finishing, double now, double* next_image, double* next_map,
                double* next_dense);
@@ -82,9 +84,10 @@ class LiveViewer : public FrameObserver {
   std::optional<Trajectory> ground_truth_;
   WebServer server_;
 
-  std::mutex mutex_;  // guards pending_, finishing_ and finished_
+  std::mutex mutex_;  // guards pending_, spare_images_, finishing_ and finished_
   std::condition_variable wake_;
   std::unique_ptr<Pending> pending_;
+  std::vector<cv::Mat> spare_images_;  // image buffers to copy the next frames into
   bool finishing_ = false;
   bool finished_ = false;
   std::thread thread_;
