@@ -194,7 +194,8 @@ async function liveCase(args) {
     await page.goto(await run.url);
     // Samples the page while the run goes on: the pose count must grow between samples.
     const samples = [];
-    while (running) {
+    const deadline = Date.now() + 180000;  // a hung run fails here, not at CTest's timeout
+    while (running && Date.now() < deadline) {
       const v = await page.evaluate(() => ({ ...window.drvslamViewer }));
       if (!running || v.finished) break;
       if (v.poses > 0 && (samples.length === 0 || v.poses !== samples[samples.length - 1].poses)) {
