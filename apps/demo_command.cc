@@ -28,6 +28,12 @@ const bool kRegistered = RegisterCommand("demo", [](CLI::App& root) {
         RunDemo(*options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
     std::printf("\n%s", FormatDemoReport(results).c_str());
     std::printf("report: %s/report.md\n", options->out_dir.c_str());
+    std::printf("html:   %s/index.html (one self-contained report.html per run:",
+                options->out_dir.c_str());
+    for (const DemoResult& result : results) {
+      std::printf(" %.2f MB", result.html_report_bytes / (1024.0 * 1024.0));
+    }
+    std::printf(")\n");
   });
 });
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "command_registry.h"
+#include "drvslam/core/error.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "progress_bar.h"
 
@@ -21,6 +22,22 @@ std::string RatioText(const std::optional<double>& ratio) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.3f", *ratio);
   return text;
+}
+
+// --viewer's value: empty (the flag alone) is the default port.
+int ParseViewerPort(const std::string& text) {
+  if (text.empty()) return 8080;
+  std::size_t used = 0;
+  int port = -1;
+  try {
+    port = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || port < 0 || port > 65535) {
+    throw Error("--viewer " + text + ": expected a TCP port 0..65535");
+  }
+  return port;
 }
 
 void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
@@ -134,7 +151,20 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
   command->add_option("--debug-frames", dynamic.debug_dir,
                       "write one picture per frame there: kept features green, removed red, "
                       "moving masks red, static masks green");
-  command->callback([options] {
+  auto viewer = std::make_shared<std::string>();
+  command
+      ->add_option("--viewer", *viewer,
+                   "serve a live viewer page on 127.0.0.1:PORT during the run (default port "
+                   "8080; 0: any free port)")
+      ->expected(0, 1);
+  command->callback([options, viewer, command] {
+    if (command->count("--viewer") > 0) {
+      options->viewer_port = ParseViewerPort(*viewer);
+      options->viewer_started = [](const std::string& url) {
+        std::printf("viewer: %s\n", url.c_str());
+        std::fflush(stdout);
+      };
+    }
     std::signal(SIGINT, RequestStop);
     ProgressBar bar("tracking");
     const RunSummary summary = RunSequence(

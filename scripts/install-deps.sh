@@ -9,6 +9,8 @@ packages=(
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   opencv-doc
+  libwebsocketpp-dev libasio-dev
+  chromium
 )
 
 missing=()
@@ -18,7 +20,24 @@ for package in "${packages[@]}"; do
   fi
 done
 
+# The viewer page's npm packages (three.js; esbuild and playwright-core for the build and the
+# browser tests), exactly as web/package-lock.json pins them. Node.js itself is expected.
+install_web_packages() {
+  local web_dir
+  web_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/web"
+  if [ -d "$web_dir/node_modules" ]; then
+    return 0
+  fi
+  if ! command -v npm >/dev/null 2>&1; then
+    echo "error: npm (Node.js 18 or newer) is needed to install the viewer page's packages" >&2
+    exit 2
+  fi
+  echo "install-deps: npm ci in $web_dir"
+  (cd "$web_dir" && npm ci --no-audit --no-fund)
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
+  install_web_packages
   exit 0
 fi
 
@@ -35,3 +54,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_web_packages

@@ -15,6 +15,7 @@
 #include "drvslam/core/timing.h"
 #include "drvslam/dense/dense_mapper.h"
 #include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/frame_observer.h"
 #include "drvslam/io/depth_image.h"
 #include "drvslam/loop/bow_vocabulary.h"
 #include "drvslam/loop/default_vocabulary.h"
@@ -94,6 +95,9 @@ struct System::Impl {
                        double timestamp);
   void Shutdown();
   SystemStats Stats() const;
+  // Hands the finished frame to the observer and records its time ("observer").
+  void Observe(const TrackResult& track, const cv::Mat& bgr,
+               std::shared_ptr<const FrameFeatures> features, double frame_ms);
 
   Settings settings;
   SystemOptions options;
@@ -114,6 +118,7 @@ struct System::Impl {
   // Declared last: destroyed (its thread joined) first, while the map and timings still exist.
   LocalMapper local_mapper;
   double total_ms = 0.0;
+  std::shared_ptr<FrameObserver> observer;
 };
 
 System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_options,
@@ -196,6 +201,8 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   TrackResult track;
   track.timestamp = timestamp;
   track.frame_id = frame.Id();
+  // A reference count, not a copy: what the observer shows of the frame's features.
+  std::shared_ptr<const FrameFeatures> observed_features = observer ? frame.FeaturesPtr() : nullptr;
   const Stopwatch tracking;
   TrackingResult result;
   {
@@ -233,7 +240,24 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   track.state = result.state;
   track.inliers = result.inliers;
   track.new_keyframe = std::move(result.new_keyframe);
+  if (observer) Observe(track, bgr, std::move(observed_features), total_ms_frame);
   return track;
+}
+
+void System::Impl::Observe(const TrackResult& track, const cv::Mat& bgr,
+                           std::shared_ptr<const FrameFeatures> features, double frame_ms) {
+  const Stopwatch watch;
+  FrameObservation observation;
+  observation.track = &track;
+  observation.bgr = &bgr;
+  observation.features = std::move(features);
+  observation.dynamic = dynamic ? &dynamic->LastReport() : nullptr;
+  observation.frame_ms = frame_ms;
+  observation.stage_ms = timings.Latest();
+  observation.frames = tracker.Recorder().FrameCount();
+  observation.tracked = tracker.Recorder().TrackedCount();
+  observer->OnFrame(observation);
+  timings.Record("observer", watch.ElapsedMs());
 }
 
 void System::Impl::HandOverToDense(const TrackingResult& result, const cv::Mat& bgr,
@@ -344,5 +368,14 @@ DenseMapper* System::Dense() { return impl_->dense.get(); }
 const std::shared_ptr<const BowVocabulary>& System::Vocabulary() const { return impl_->vocabulary; }
 
 KeyFrameDatabase& System::KeyFrames() { return impl_->keyframe_database; }
+
+std::vector<LoopEvent> System::LoopClosures() const {
+  if (!impl_->loop_closer) return {};
+  return impl_->loop_closer->Stats().loops;
+}
+
+void System::SetFrameObserver(std::shared_ptr<FrameObserver> observer) {
+  impl_->observer = std::move(observer);
+}
 
 }  // namespace drvslam

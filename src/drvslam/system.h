@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 #include "drvslam/core/se3.h"
 #include "drvslam/io/trajectory_io.h"
@@ -23,9 +24,11 @@ namespace drvslam {
 class BowVocabulary;
 class DenseMapper;
 class DynamicFrontEnd;
+class FrameObserver;
 class KeyFrame;
 class KeyFrameDatabase;
 class Map;
+struct LoopEvent;
 struct Settings;
 struct SystemOptions;
 struct SystemStats;
@@ -82,6 +85,12 @@ class System {
   // tracking created, for place recognition.
   const std::shared_ptr<const BowVocabulary>& Vocabulary() const;
   KeyFrameDatabase& KeyFrames();
+  // Loop closures so far (empty when loop closing is off); safe from any thread.
+  std::vector<LoopEvent> LoopClosures() const;
+
+  // Called at the end of every TrackRGBD on the tracking thread (frame_observer.h); null: none.
+  // Set it before the first frame (or between frames, on the tracking thread).
+  void SetFrameObserver(std::shared_ptr<FrameObserver> observer);
 
  private:
   struct Impl;  // the map, the pipeline stages and their threads (system.cc)

@@ -41,7 +41,16 @@ TEST(DemoTest, RunsEachScenarioAndTheBaselineAndWritesTheReport) {
     EXPECT_TRUE(result.rpe_trans_rmse.has_value()) << result.run;  // 40 frames span 1.3 s
     EXPECT_TRUE(fs::exists(result.plot_path)) << result.plot_path;
     EXPECT_TRUE(fs::exists(root / result.plot_in_report)) << result.plot_in_report;
+    // One self-contained HTML report per run, of the size RunDemo says.
+    ASSERT_TRUE(fs::exists(root / result.html_report_in_index)) << result.html_report_in_index;
+    EXPECT_EQ(fs::file_size(root / result.html_report_in_index), result.html_report_bytes);
+    EXPECT_NE(test::ReadFile(root / result.html_report_in_index).find("window.DRVSLAM_DATA = "),
+              std::string::npos);
   }
+  const std::string index = test::ReadFile(root / "index.html");
+  EXPECT_NE(index.find("<a href=\"walking_xyz/dynamic_off/report.html\">"), std::string::npos)
+      << index;
+  EXPECT_NE(index.find("<a href=\"static_xyz/report.html\">"), std::string::npos) << index;
   EXPECT_LT(results[0].ate_rmse, 0.01);
   EXPECT_LT(results[1].ate_rmse, 0.01);
 

@@ -9,6 +9,12 @@ namespace drvslam {
 void StageTimings::Record(const std::string& stage, double milliseconds) {
   std::lock_guard<std::mutex> lock(mutex_);
   samples_[stage].Add(milliseconds);
+  latest_[stage] = milliseconds;
+}
+
+std::map<std::string, double> StageTimings::Latest() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_;
 }
 
 std::map<std::string, TimingSummary> StageTimings::Summaries() const {

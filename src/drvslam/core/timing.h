@@ -28,10 +28,13 @@ class StageTimings {
   void Record(const std::string& stage, double milliseconds);
   // Stages in name order.
   std::map<std::string, TimingSummary> Summaries() const;
+  // The latest time recorded for each stage (what a live viewer shows per frame).
+  std::map<std::string, double> Latest() const;
 
  private:
   mutable std::mutex mutex_;
   std::map<std::string, BoundedSample> samples_;
+  std::map<std::string, double> latest_;
 };
 
 // Summary of a sample (nearest-rank percentiles; zeros for an empty sample).

@@ -342,6 +342,9 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
     WriteObjectRows();
     WriteFrameRow();
   }
+  // Moved, not copied: the report keeps them at no cost for whoever draws the frame.
+  report_.kept_features = std::move(removal.kept);
+  report_.removed_features = std::move(removal.removed);
   ++next_index_;
   return filtered;
 }

@@ -103,6 +103,10 @@ struct DynamicFrameReport {
   int removed_unlabelled = 0;
   int kept_back = 0;  // removed features kept back by Dynamic.minKeptFeatures
   int map_points_culled = 0;
+  // The frame's keypoints after removal and those removed (what --debug-frames and the viewer
+  // draw).
+  std::vector<cv::KeyPoint> kept_features;
+  std::vector<cv::KeyPoint> removed_features;
 };
 
 struct DynamicStats {

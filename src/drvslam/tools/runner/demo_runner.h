@@ -1,7 +1,9 @@
 // RunDemo: the embedded default job a new user runs first, with no download. It synthesizes a
 // static and a dynamic version of the same camera path, runs SLAM on both (the dynamic one also
 // with dynamic handling off: the plain ORB-SLAM2 baseline it improves on), evaluates every run
-// against the exact ground truth and writes a report (report.md with plots). Those runs use the
+// against the exact ground truth and writes a report (report.md with plots, and index.html
+// linking each run's self-contained report.html, the viewer page with the run inlined). Those
+// runs use the
 // sequences' ground-truth masks (an oracle); with a YOLO-seg model the walking scenarios are
 // also synthesized with actors cut out of real photographs and run with the network.
 #pragma once
@@ -49,6 +51,11 @@ struct DemoResult {
   double synth_fps = 0.0;
   std::string plot_path;
   std::string plot_in_report;  // plot_path relative to the report's folder
+  // The run's self-contained HTML report (drvslam report), its size, and its path relative to
+  // the demo's folder (where index.html links it).
+  std::string html_report_path;
+  std::size_t html_report_bytes = 0;
+  std::string html_report_in_index;
 };
 
 // status(line) receives progress lines. Throws Error on failure; a bad model or a missing
@@ -58,5 +65,8 @@ std::vector<DemoResult> RunDemo(const DemoOptions& options,
 
 // The report as Markdown (what RunDemo writes to OUT/report.md).
 std::string FormatDemoReport(const std::vector<DemoResult>& results);
+
+// OUT/index.html: the results table with a link to each run's report.html.
+std::string FormatDemoIndexHtml(const std::vector<DemoResult>& results);
 
 }  // namespace drvslam

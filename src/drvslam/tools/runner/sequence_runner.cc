@@ -14,13 +14,17 @@
 #include "drvslam/core/settings_file.h"
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_stats_json.h"
+#include "drvslam/dense/point_cloud_io.h"
 #include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/realtime_feeder.h"
 #include "drvslam/io/tum_dataset.h"
+#include "drvslam/map/map.h"
+#include "drvslam/map/map_point.h"
 #include "drvslam/settings_registry.h"
 #include "drvslam/system_options.h"
 #include "drvslam/tools/runner/frame_log.h"
+#include "drvslam/tools/viewer/live_viewer.h"
 #include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {
@@ -67,6 +71,30 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
 
 using Clock = std::chrono::steady_clock;
 
+// Finishes the live viewer of a run and detaches it from the system it reads; declared after
+// the system, so it runs first when the scope ends, also on an exception.
+struct ViewerStop {
+  System& system;
+  const std::shared_ptr<LiveViewer>& viewer;
+  ~ViewerStop() {
+    if (!viewer) return;
+    viewer->Finish();
+    system.SetFrameObserver(nullptr);
+  }
+};
+
+// The map points' positions as a PLY (x y z; colour and label unused), for the viewer.
+void WriteSparseMap(const Map& map, const std::string& path) {
+  DenseCloud points;
+  for (const std::shared_ptr<MapPoint>& point : map.MapPoints()) {
+    if (point->IsBad()) continue;
+    DensePoint p;
+    p.position = point->Position().cast<float>();
+    points.push_back(p);
+  }
+  WritePlyCloud(path, points);
+}
+
 // `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
 void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
                   RunSummary* summary) {
@@ -82,6 +110,7 @@ void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point sta
                      "drvslam camera trajectory (T_wc), every tracked frame");
   WriteTumTrajectory((out_dir / "KeyFrameTrajectory.txt").string(), system.KeyFrameTrajectory(),
                      "drvslam keyframe trajectory (T_wc)");
+  WriteSparseMap(system.GetMap(), (out_dir / "sparse_map.ply").string());
   WriteStatsJson((out_dir / "stats.json").string(), *summary);
 }
 
@@ -147,7 +176,21 @@ RunSummary RunSequence(const RunOptions& options,
   const std::unique_ptr<DatasetMotionTruth> motion_truth =
       dynamic.config ? DatasetMotionTruth::Open(options.dataset, dynamic.backend) : nullptr;
   System system(resolved.settings, resolved.tracker, system_options);
+  std::shared_ptr<LiveViewer> viewer;
+  // However the run ends, the viewer stops (and lets go of the system) before the system goes.
+  const ViewerStop viewer_stop{system, viewer};
+  if (options.viewer_port) {
+    LiveViewerOptions viewer_options;
+    viewer_options.port = *options.viewer_port;
+    viewer_options.title = "drvslam run: " + fs::path(options.dataset).filename().string();
+    const fs::path truth = fs::path(options.dataset) / "groundtruth.txt";
+    if (fs::is_regular_file(truth)) viewer_options.ground_truth = truth.string();
+    viewer = std::make_shared<LiveViewer>(system, viewer_options);
+    system.SetFrameObserver(viewer);
+    if (options.viewer_started) options.viewer_started(viewer->Url());
+  }
   RunSummary summary;
+  summary.dataset = fs::absolute(options.dataset).lexically_normal().string();
   summary.settings_source = resolved.source;
   summary.dynamic_setup = dynamic.description;
   summary.segmenter = dynamic.segmenter_label;
@@ -255,6 +298,8 @@ RunSummary RunSequence(const RunOptions& options,
   finish_feeder();
   FileRejections(rejections, &summary);
   WriteOutputs(system, out_dir, started, &summary);
+  // The page gets the final map (after the shutdown drain) and the end of the run.
+  if (viewer) viewer->Finish();
   if (rejections.Accepted() == 0 && rejections.Count() > 0 && !summary.interrupted) {
     throw Error(options.dataset + ": none of the " + std::to_string(total) +
                 " frames could be used (" + std::to_string(rejections.Count()) +
@@ -266,6 +311,7 @@ RunSummary RunSequence(const RunOptions& options,
 void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   const SystemStats& s = summary.stats;
   nlohmann::json json;
+  json["dataset"] = summary.dataset;
   json["frames"] = s.frames;
   json["tracked"] = s.tracked;
   json["tracked_ratio"] = s.frames > 0 ? static_cast<double>(s.tracked) / s.frames : 0.0;

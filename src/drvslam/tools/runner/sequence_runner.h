@@ -1,5 +1,6 @@
 // RunSequence: drvslam's main job on a TUM-layout folder: settings resolution, the frame loop
-// through System, and the outputs (CameraTrajectory.txt, KeyFrameTrajectory.txt, stats.json).
+// through System, and the outputs (CameraTrajectory.txt, KeyFrameTrajectory.txt, stats.json,
+// sparse_map.ply: the map points' positions).
 // Whatever was tracked is written even when a frame fails to load or the run is interrupted.
 #pragma once
 
@@ -38,6 +39,10 @@ struct RunOptions {
   bool strict_settings = false;
   // --frame-log FILE: one line per frame (tools/runner/frame_log.h); empty: none.
   std::string frame_log;
+  // --viewer [PORT]: serve the live viewer page on 127.0.0.1:PORT during the run (0: any free
+  // port); nullopt: no viewer. `viewer_started` (may be empty) gets its URL once it listens.
+  std::optional<int> viewer_port;
+  std::function<void(const std::string&)> viewer_started;
 };
 
 // A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
@@ -47,6 +52,7 @@ inline constexpr std::size_t kMaxConsecutiveRejectedFrames = 30;
 
 struct RunSummary {
   SystemStats stats;
+  std::string dataset;          // the sequence folder, absolute (stats.json "dataset")
   std::string settings_source;  // the file the settings came from, or "defaults (TUM fr3)"
   bool interrupted = false;
   // --realtime: frames that arrived while tracking was busy and were replaced by a newer one
@@ -93,11 +99,12 @@ RunSummary RunSequence(const RunOptions& options,
                        const std::function<void(std::size_t, std::size_t)>& progress = nullptr,
                        const std::atomic<bool>* stop = nullptr);
 
-// Writes stats.json for a run (keys: frames, tracked, tracked_ratio, keyframes, map_points,
-// fps (wall-clock throughput of the whole run: frames / wall_s, see RunSummary), wall_s (the
-// run's wall time in seconds, frame loop and shutdown drain, writing the outputs excluded),
-// tracking_fps (frames over the time inside TrackRGBD calls only), frames_lost, map_resets,
-// frames_discarded, frames_skipped, frames_skipped_loading, max_arrival_lag_ms, frames_rejected,
+// Writes stats.json for a run (keys: dataset (the sequence folder, absolute), frames, tracked,
+// tracked_ratio, keyframes, map_points, fps (wall-clock throughput of the whole run: frames /
+// wall_s, see RunSummary), wall_s (the run's wall time in seconds, frame loop and shutdown drain,
+// writing the outputs excluded), tracking_fps (frames over the time inside TrackRGBD calls only),
+// frames_lost, map_resets, frames_discarded, frames_skipped, frames_skipped_loading,
+// max_arrival_lag_ms, frames_rejected,
 // frames_rejected_by_fault.{fault: count}, frames_rejected_examples[{frame (null for a list
 // entry), fault, file, message}], segmenter.{label, oracle},
 // relocalization.{relocalizations,attempts,vocabulary_load_ms},
