@@ -9,6 +9,7 @@ packages=(
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   opencv-doc
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()
