@@ -11,6 +11,7 @@
 #include "drvslam/eval/eval_report.h"
 #include "drvslam/eval/rpe.h"
 #include "drvslam/eval/trajectory_plot.h"
+#include "drvslam/io/trajectory_formats.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/io/tum_dataset.h"
 
@@ -24,7 +25,31 @@ struct EvalArguments {
   std::string json_path;
   std::string plot_path;
   std::string dataset;  // sequence folder whose frames coverage counts against
+  // tum|kitti|euroc, or empty: detected from the file's content (--format sets both).
+  std::string format;
+  std::string gt_format;
+  std::string est_format;
+  // KITTI times files (default: <stem>_times.txt or times.txt beside the poses).
+  std::string gt_times;
+  std::string est_times;
 };
+
+// How one file is read: its format (given, else detected) and KITTI times file.
+struct TrajectoryInput {
+  drvslam::TrajectoryReadOptions read;
+  std::string label;  // "tum", "kitti (times: FILE)", ...
+};
+
+TrajectoryInput ResolveInput(const std::string& path, const std::string& format,
+                             const std::string& option, const std::string& times) {
+  TrajectoryInput input;
+  input.read.format = format.empty() ? drvslam::DetectTrajectoryFormat(path)
+                                     : drvslam::ParseTrajectoryFormat(format, option);
+  input.read.kitti_times = times;
+  input.label = drvslam::ToString(*input.read.format);
+  if (!format.empty()) input.label += ", as " + option + " says";
+  return input;
+}
 
 // The frames `drvslam run` processes in the sequence: colour images paired with depth.
 std::size_t SequenceFrames(const std::string& dataset) {
@@ -40,8 +65,16 @@ void RunEval(EvalArguments args) {
   rpe_options.offset = args.ate.offset;
   rpe_options.Check();
 
-  const drvslam::Trajectory gt = drvslam::ReadTumTrajectory(args.ground_truth);
-  const drvslam::Trajectory est = drvslam::ReadTumTrajectory(args.estimate);
+  const std::string gt_format = args.gt_format.empty() ? args.format : args.gt_format;
+  const std::string est_format = args.est_format.empty() ? args.format : args.est_format;
+  const std::string gt_option = args.gt_format.empty() ? "--format" : "--gt-format";
+  const std::string est_option = args.est_format.empty() ? "--format" : "--est-format";
+  const TrajectoryInput gt_input =
+      ResolveInput(args.ground_truth, gt_format, gt_option, args.gt_times);
+  const TrajectoryInput est_input =
+      ResolveInput(args.estimate, est_format, est_option, args.est_times);
+  const drvslam::Trajectory gt = drvslam::ReadTrajectory(args.ground_truth, gt_input.read);
+  const drvslam::Trajectory est = drvslam::ReadTrajectory(args.estimate, est_input.read);
   const drvslam::AteResult ate = drvslam::ComputeAte(gt, est, args.ate);
   // With --scale the estimate's relative motions are compared at the scale ATE found.
   rpe_options.scale = ate.alignment.scale;
@@ -49,8 +82,10 @@ void RunEval(EvalArguments args) {
   const std::optional<drvslam::RpeResult> rpe =
       drvslam::ComputeRpeIfLongEnough(gt, est, rpe_options);
 
-  std::cout << "ground truth: " << args.ground_truth << " (" << gt.size() << " poses)\n"
-            << "estimate:     " << args.estimate << " (" << est.size() << " poses)\n"
+  std::cout << "ground truth: " << args.ground_truth << " (" << gt.size() << " poses, "
+            << gt_input.label << ")\n"
+            << "estimate:     " << args.estimate << " (" << est.size() << " poses, "
+            << est_input.label << ")\n"
             << drvslam::FormatEvalTable(ate, rpe);
   if (!args.json_path.empty()) {
     drvslam::WriteEvalReportJson(args.json_path, ate, rpe);
@@ -68,8 +103,22 @@ const bool kRegistered = drvslam::cli::RegisterCommand("eval", [](CLI::App& root
       "eval",
       "ATE and RPE of an estimated trajectory against ground truth, the TUM RGB-D benchmark's "
       "way (evaluate_ate.py, evaluate_rpe.py --fixed_delta)");
-  cmd->add_option("GT", args->ground_truth, "ground-truth trajectory (TUM format)")->required();
-  cmd->add_option("EST", args->estimate, "estimated trajectory (TUM format)")->required();
+  cmd->add_option("GT", args->ground_truth, "ground-truth trajectory (tum, kitti or euroc)")
+      ->required();
+  cmd->add_option("EST", args->estimate, "estimated trajectory (tum, kitti or euroc)")->required();
+  const auto formats = CLI::IsMember({"tum", "kitti", "euroc"});
+  cmd->add_option("--format", args->format,
+                  "tum|kitti|euroc: format of both files (default: detected from each file's "
+                  "content)")
+      ->check(formats);
+  cmd->add_option("--gt-format", args->gt_format, "format of GT only (overrides --format)")
+      ->check(formats);
+  cmd->add_option("--est-format", args->est_format, "format of EST only (overrides --format)")
+      ->check(formats);
+  cmd->add_option("--gt-times", args->gt_times,
+                  "KITTI times file of GT (default: <stem>_times.txt or times.txt beside it; "
+                  "without one the poses are stamped 0, 1, 2, ...)");
+  cmd->add_option("--est-times", args->est_times, "KITTI times file of EST (as --gt-times)");
   cmd->add_option("--max-diff", args->ate.max_difference,
                   "largest time difference (s) for two stamps to associate")
       ->capture_default_str();

@@ -6,6 +6,7 @@
 
 #include "command_registry.h"
 #include "drvslam/core/error.h"
+#include "drvslam/io/trajectory_formats.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "progress_bar.h"
 
@@ -38,6 +39,17 @@ int ParseViewerPort(const std::string& text) {
     throw Error("--viewer " + text + ": expected a TCP port 0..65535");
   }
   return port;
+}
+
+// The trajectory files a run writes in `format` (WriteRunTrajectories), comma-separated.
+std::string TrajectoryFileNames(TrajectoryFormat format) {
+  std::string names;
+  for (const char* base : {"CameraTrajectory", "KeyFrameTrajectory"}) {
+    const std::string file = TrajectoryFilePath(base, format);
+    names += (names.empty() ? "" : ",") + file;
+    if (format == TrajectoryFormat::kKitti) names += "," + KittiTimesPath(file);
+  }
+  return names;
 }
 
 void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
@@ -95,8 +107,8 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
     std::printf("loops:       %ld closed (%ld detected, %ld rejected), %ld global BA\n",
                 l.corrections, l.detections, l.rejected, l.global_bas);
   }
-  std::printf("wrote:       %s/{CameraTrajectory.txt,KeyFrameTrajectory.txt,stats.json}\n",
-              out_dir.c_str());
+  std::printf("wrote:       %s/{%s,stats.json}\n", out_dir.c_str(),
+              TrajectoryFileNames(summary.trajectory_format).c_str());
   if (s.dense) {
     std::printf(
         "             %s/{dense_map.ply,dense_map.pcd,dense_map.bt,dense_map_labels.json}\n",
@@ -142,6 +154,13 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
                     "that arrives while tracking is busy replaces the waiting one (counted as "
                     "skipped), and tracking uses the newest masks, carried to the frame, instead "
                     "of waiting (ignored with --sequential)");
+  command
+      ->add_option("--trajectory-format", options->trajectory_format,
+                   "tum|kitti|euroc: format of CameraTrajectory and KeyFrameTrajectory (tum: "
+                   ".txt, 'timestamp tx ty tz qx qy qz qw'; kitti: .txt, 3x4 T_wc row-major, "
+                   "stamps in *_times.txt; euroc: .csv, 'ns,px,py,pz,qw,qx,qy,qz')")
+      ->check(CLI::IsMember({"tum", "kitti", "euroc"}))
+      ->capture_default_str();
   command->add_flag("--strict-settings", options->strict_settings,
                     "unknown keys in drvslam's settings sections are errors (default: warnings "
                     "naming the nearest known key)");

@@ -11,6 +11,7 @@ packages=(
   opencv-doc
   libwebsocketpp-dev libasio-dev
   chromium
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

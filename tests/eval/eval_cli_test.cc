@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "drvslam/io/trajectory_formats.h"
 #include "drvslam/io/trajectory_io.h"
 #include "test_support/cli_run.h"
 #include "test_support/missing_data.h"
@@ -160,6 +161,65 @@ TEST_F(EvalCliTest, UnwritableJsonPathIsAnError) {
   const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --json /nonexistent-dir/eval.json");
   EXPECT_EQ(run.status, 2) << run.output;
   EXPECT_NE(run.output.find("error: /nonexistent-dir/eval.json"), std::string::npos) << run.output;
+}
+
+nlohmann::json ReadJson(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// The same estimate as KITTI (with its times file) and EuRoC files: the same matches and the same
+// ATE as the TUM file, to the 9 decimals the formats keep; GT may be EuRoC too.
+TEST_F(EvalCliTest, KittiAndEurocCopiesGiveTheSameAteAsTum) {
+  const Trajectory estimate = ReadTumTrajectory(est_);
+  const std::string kitti = (dir_ / "estimate_kitti.txt").string();
+  const std::string euroc = (dir_ / "estimate.csv").string();
+  const std::string gt_euroc = (dir_ / "groundtruth.csv").string();
+  WriteTrajectory(kitti, estimate, TrajectoryFormat::kKitti);
+  WriteTrajectory(euroc, estimate, TrajectoryFormat::kEuroc);
+  WriteTrajectory(gt_euroc, ReadTumTrajectory(gt_), TrajectoryFormat::kEuroc);
+  const std::string tum_json = (dir_ / "tum.json").string();
+  ASSERT_EQ(RunCli("eval " + gt_ + " " + est_ + " --json " + tum_json).status, 0);
+  const nlohmann::json tum = ReadJson(tum_json);
+  struct Case {
+    std::string gt, est, says;
+  };
+  for (const Case& c : {Case{gt_, kitti, "poses, kitti)"}, Case{gt_, euroc, "poses, euroc)"},
+                        Case{gt_euroc, kitti, "poses, kitti)"}}) {
+    const std::string json_path = (dir_ / "other.json").string();
+    const CliRun run = RunCli("eval " + c.gt + " " + c.est + " --json " + json_path);
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find(c.says), std::string::npos) << run.output;
+    const nlohmann::json other = ReadJson(json_path);
+    EXPECT_EQ(other["ate"]["matched"], tum["ate"]["matched"]) << c.est;
+    EXPECT_NEAR(other["ate"]["rmse"].get<double>(), tum["ate"]["rmse"].get<double>(), 1e-9);
+    EXPECT_NEAR(other["rpe"]["trans_rmse"].get<double>(), tum["rpe"]["trans_rmse"].get<double>(),
+                1e-9);
+  }
+}
+
+// An explicit format overrides detection: a KITTI file read as TUM fails on its first line.
+TEST_F(EvalCliTest, FormatOptionOverridesDetection) {
+  const std::string kitti = (dir_ / "estimate_kitti.txt").string();
+  WriteTrajectory(kitti, ReadTumTrajectory(est_), TrajectoryFormat::kKitti);
+  const CliRun run = RunCli("eval " + gt_ + " " + kitti + " --est-format tum");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("error: " + kitti + ":1: expected 8 values"), std::string::npos)
+      << run.output;
+  const CliRun bad = RunCli("eval " + gt_ + " " + kitti + " --format csv");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--format"), std::string::npos) << bad.output;
+}
+
+TEST_F(EvalCliTest, BadEurocLineIsOneErrorNamingFileAndLine) {
+  const std::string path = (dir_ / "bad.csv").string();
+  std::ofstream(path) << "#timestamp [ns],p_x,p_y,p_z,q_w,q_x,q_y,q_z\n"
+                      << "1000000000,0,0,0,1,0,0,0\n"
+                      << "1033333333,0,0,zero,1,0,0,0\n";
+  const CliRun run = RunCli("eval " + gt_ + " " + path);
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("error: " + path + ":3: 'zero' is not a number"), std::string::npos)
+      << run.output;
 }
 
 }  // namespace

@@ -17,24 +17,28 @@ void ForEachDataLine(const std::string& path,
   if (!in) throw Error(path + ": cannot open for reading");
   std::string line;
   int line_number = 0;
-  std::vector<std::string> fields;
   while (std::getline(in, line)) {
     ++line_number;
-    fields.clear();
-    std::string field;
-    for (const char ch : line) {
-      if (ch == ' ' || ch == '\t' || ch == ',' || ch == '\r') {
-        if (!field.empty()) fields.push_back(std::move(field));
-        field.clear();
-      } else {
-        field.push_back(ch);
-      }
-    }
-    if (!field.empty()) fields.push_back(std::move(field));
+    const std::vector<std::string> fields = SplitFields(line);
     if (fields.empty() || fields.front().front() == '#') continue;
     visit(line_number, fields);
   }
   if (in.bad()) throw Error(path + ": read error");
+}
+
+std::vector<std::string> SplitFields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  for (const char ch : line) {
+    if (ch == ' ' || ch == '\t' || ch == ',' || ch == '\r') {
+      if (!field.empty()) fields.push_back(std::move(field));
+      field.clear();
+    } else {
+      field.push_back(ch);
+    }
+  }
+  if (!field.empty()) fields.push_back(std::move(field));
+  return fields;
 }
 
 double ParseNumber(const std::string& field, const std::string& where) {

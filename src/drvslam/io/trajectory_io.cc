@@ -34,22 +34,27 @@ Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty) {
     }
     const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (q.norm() < 1e-9) throw Error(where + ": quaternion has zero length");
-    const StampedPose pose{v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3]))};
-    if (!trajectory.empty() && v[0] < trajectory.back().timestamp) {
-      throw Error(where + ": timestamp " + fields[0] + " does not increase (previous line has " +
-                  FormatStamp(trajectory.back().timestamp) + ")");
-    }
-    // Real ground truth repeats a stamp now and then (fr2/desk line 10863: stamps rounded to
-    // 0.1 ms at a 300 Hz capture rate). The TUM tools keep the later line, and so does this, so
-    // the result stays strictly increasing.
-    if (!trajectory.empty() && v[0] == trajectory.back().timestamp) {
-      trajectory.back() = pose;
-    } else {
-      trajectory.push_back(pose);
-    }
+    AppendStampedPose({v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3]))}, fields[0], where,
+                      &trajectory);
   });
   if (trajectory.empty() && !allow_empty) throw Error(path + ": trajectory has no poses");
   return trajectory;
+}
+
+void AppendStampedPose(const StampedPose& pose, const std::string& stamp_field,
+                       const std::string& where, Trajectory* trajectory) {
+  if (!trajectory->empty() && pose.timestamp < trajectory->back().timestamp) {
+    throw Error(where + ": timestamp " + stamp_field + " does not increase (previous line has " +
+                FormatStamp(trajectory->back().timestamp) + ")");
+  }
+  // Real ground truth repeats a stamp now and then (fr2/desk line 10863: stamps rounded to
+  // 0.1 ms at a 300 Hz capture rate). The TUM tools keep the later line, and so does this, so
+  // the result stays strictly increasing.
+  if (!trajectory->empty() && pose.timestamp == trajectory->back().timestamp) {
+    trajectory->back() = pose;
+  } else {
+    trajectory->push_back(pose);
+  }
 }
 
 std::string FormatTumPose(const StampedPose& pose) {

@@ -23,6 +23,12 @@ using Trajectory = std::vector<StampedPose>;
 // (no poses) is an Error unless allow_empty is set.
 Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty = false);
 
+// Appends a pose read from `where` (file:line) to a trajectory being read: a stamp below the
+// last one is an Error naming `where` and `stamp_field` (the stamp as written); an equal stamp
+// replaces the last pose (the TUM tools' rule). Shared by the readers of every format.
+void AppendStampedPose(const StampedPose& pose, const std::string& stamp_field,
+                       const std::string& where, Trajectory* trajectory);
+
 // Writes timestamps with 6 decimals and pose values with 9, so reading back reproduces the
 // written numbers (the timestamp and translation exactly; the quaternion to 1e-9, since reading
 // renormalizes it). The quaternion is written with qw >= 0. Throws Error when the file

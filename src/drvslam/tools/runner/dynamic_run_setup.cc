@@ -14,6 +14,7 @@ namespace {
 namespace fs = std::filesystem;
 
 bool HasGroundTruthMasks(const std::string& dataset_dir) {
+  if (dataset_dir.empty()) return false;  // no sequence (the Python bindings without one)
   std::error_code error;
   return fs::is_directory(fs::path(dataset_dir) / "masks", error) &&
          fs::is_regular_file(fs::path(dataset_dir) / "instances.txt", error);

@@ -18,6 +18,7 @@
 #include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/realtime_feeder.h"
+#include "drvslam/io/trajectory_formats.h"
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/map/map.h"
 #include "drvslam/map/map_point.h"
@@ -46,7 +47,7 @@ struct ResolvedSettings {
 
 ResolvedSettings ResolveSettings(const RunOptions& options) {
   std::string path = options.config;
-  if (path.empty()) {
+  if (path.empty() && !options.dataset.empty()) {
     const fs::path candidate = fs::path(options.dataset) / "settings.yaml";
     if (fs::exists(candidate)) path = candidate.string();
   }
@@ -67,6 +68,12 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   CheckSettingsKeys(file, options.strict_settings);
   resolved.source = path;
   return resolved;
+}
+
+// "on" -> true, "off" -> false; anything else is an Error naming the option.
+bool ParseOnOff(const std::string& value, const std::string& option) {
+  if (value != "on" && value != "off") throw Error(option + " = " + value + " must be on or off");
+  return value == "on";
 }
 
 using Clock = std::chrono::steady_clock;
@@ -105,11 +112,8 @@ void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point sta
   if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string());
   summary->stats = system.Stats();
   summary->fps = summary->wall_s > 0.0 ? summary->stats.frames / summary->wall_s : 0.0;
-  summary->camera_trajectory_path = (out_dir / "CameraTrajectory.txt").string();
-  WriteTumTrajectory(summary->camera_trajectory_path, system.CameraTrajectory(),
-                     "drvslam camera trajectory (T_wc), every tracked frame");
-  WriteTumTrajectory((out_dir / "KeyFrameTrajectory.txt").string(), system.KeyFrameTrajectory(),
-                     "drvslam keyframe trajectory (T_wc)");
+  summary->camera_trajectory_path =
+      WriteRunTrajectories(system, out_dir.string(), summary->trajectory_format);
   WriteSparseMap(system.GetMap(), (out_dir / "sparse_map.ply").string());
   WriteStatsJson((out_dir / "stats.json").string(), *summary);
 }
@@ -135,14 +139,48 @@ void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::ti
 
 }  // namespace
 
+RunSetup PrepareRun(const RunOptions& options) {
+  const ResolvedSettings resolved = ResolveSettings(options);
+  RunSetup setup;
+  setup.settings = resolved.settings;
+  setup.tracker = resolved.tracker;
+  setup.settings_source = resolved.source;
+  SystemOptions& system_options = setup.system;
+  system_options.sequential = options.sequential;
+  system_options.mapping = resolved.mapping;
+  system_options.relocalization = resolved.relocalization;
+  system_options.dense = resolved.dense;
+  system_options.loop = resolved.loop;
+  if (!options.loop.empty()) system_options.loop.enabled = ParseOnOff(options.loop, "--loop");
+  if (!options.dense.empty()) system_options.dense->enabled = ParseOnOff(options.dense, "--dense");
+  setup.dynamic =
+      ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation, resolved.dynamic);
+  system_options.dynamic = setup.dynamic.config;
+  return setup;
+}
+
+std::string WriteRunTrajectories(const System& system, const std::string& out_dir,
+                                 TrajectoryFormat format) {
+  const fs::path folder = out_dir.empty() ? fs::path(".") : fs::path(out_dir);
+  const std::string camera_path =
+      TrajectoryFilePath((folder / "CameraTrajectory").string(), format);
+  WriteTrajectory(camera_path, system.CameraTrajectory(), format,
+                  "drvslam camera trajectory (T_wc), every tracked frame");
+  WriteTrajectory(TrajectoryFilePath((folder / "KeyFrameTrajectory").string(), format),
+                  system.KeyFrameTrajectory(), format, "drvslam keyframe trajectory (T_wc)");
+  return camera_path;
+}
+
 RunSummary RunSequence(const RunOptions& options,
                        const std::function<void(std::size_t, std::size_t)>& progress,
                        const std::atomic<bool>* stop) {
-  const ResolvedSettings resolved = ResolveSettings(options);
+  const TrajectoryFormat trajectory_format =
+      ParseTrajectoryFormat(options.trajectory_format, "--trajectory-format");
+  const RunSetup setup = PrepareRun(options);
   TumDatasetOptions dataset_options;
-  dataset_options.depth_map_factor = resolved.settings.depth.depth_map_factor;
-  dataset_options.expected_width = resolved.settings.camera.width;
-  dataset_options.expected_height = resolved.settings.camera.height;
+  dataset_options.depth_map_factor = setup.settings.depth.depth_map_factor;
+  dataset_options.expected_width = setup.settings.camera.width;
+  dataset_options.expected_height = setup.settings.camera.height;
   const TumDataset dataset(options.dataset, dataset_options);
 
   const fs::path out_dir = options.out_dir.empty() ? fs::path(".") : fs::path(options.out_dir);
@@ -152,30 +190,10 @@ RunSummary RunSequence(const RunOptions& options,
     throw Error(out_dir.string() + ": cannot create output folder");
   }
 
-  SystemOptions system_options;
-  system_options.sequential = options.sequential;
-  system_options.mapping = resolved.mapping;
-  system_options.relocalization = resolved.relocalization;
-  system_options.dense = resolved.dense;
-  system_options.loop = resolved.loop;
-  if (!options.loop.empty()) {
-    if (options.loop != "on" && options.loop != "off") {
-      throw Error("--loop = " + options.loop + " must be on or off");
-    }
-    system_options.loop.enabled = options.loop == "on";
-  }
-  if (!options.dense.empty()) {
-    if (options.dense != "on" && options.dense != "off") {
-      throw Error("--dense = " + options.dense + " must be on or off");
-    }
-    system_options.dense->enabled = options.dense == "on";
-  }
-  const DynamicRunSetup dynamic =
-      ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation, resolved.dynamic);
-  system_options.dynamic = dynamic.config;
+  const DynamicRunSetup& dynamic = setup.dynamic;
   const std::unique_ptr<DatasetMotionTruth> motion_truth =
       dynamic.config ? DatasetMotionTruth::Open(options.dataset, dynamic.backend) : nullptr;
-  System system(resolved.settings, resolved.tracker, system_options);
+  System system(setup.settings, setup.tracker, setup.system);
   std::shared_ptr<LiveViewer> viewer;
   // However the run ends, the viewer stops (and lets go of the system) before the system goes.
   const ViewerStop viewer_stop{system, viewer};
@@ -191,7 +209,8 @@ RunSummary RunSequence(const RunOptions& options,
   }
   RunSummary summary;
   summary.dataset = fs::absolute(options.dataset).lexically_normal().string();
-  summary.settings_source = resolved.source;
+  summary.trajectory_format = trajectory_format;
+  summary.settings_source = setup.settings_source;
   summary.dynamic_setup = dynamic.description;
   summary.segmenter = dynamic.segmenter_label;
   summary.oracle_masks = dynamic.oracle;

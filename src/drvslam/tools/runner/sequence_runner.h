@@ -11,10 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "drvslam/core/settings.h"
 #include "drvslam/io/frame_rejections.h"
+#include "drvslam/io/trajectory_formats.h"
 #include "drvslam/system.h"
+#include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
 #include "drvslam/tools/runner/dynamic_run_setup.h"
+#include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {
 
@@ -43,7 +47,31 @@ struct RunOptions {
   // port); nullopt: no viewer. `viewer_started` (may be empty) gets its URL once it listens.
   std::optional<int> viewer_port;
   std::function<void(const std::string&)> viewer_started;
+  // --trajectory-format tum|kitti|euroc: the format of CameraTrajectory and KeyFrameTrajectory
+  // (io/trajectory_formats.h; kitti adds *_times.txt, euroc writes .csv).
+  std::string trajectory_format = "tum";
 };
+
+// What a run's System is built from, resolved as `drvslam run` resolves it.
+struct RunSetup {
+  Settings settings;
+  TrackerOptions tracker;
+  SystemOptions system;
+  DynamicRunSetup dynamic;      // the segmenter and dynamic handling chosen
+  std::string settings_source;  // the settings file, or "defaults (TUM fr3)"
+};
+
+// Loads the settings (options.config, else DATASET/settings.yaml when options.dataset is set,
+// else the TUM fr3 defaults), applies sequential, --loop and --dense, and chooses the segmenter
+// and dynamic handling (ResolveDynamicRun; this creates the segmenter). Throws Error naming the
+// settings key or option at fault. RunSequence and the Python bindings build their System so.
+RunSetup PrepareRun(const RunOptions& options);
+
+// Writes OUT/CameraTrajectory and OUT/KeyFrameTrajectory of `system` in `format` (.txt, .csv
+// for euroc; kitti also *_times.txt), as `drvslam run` does after System::Shutdown; returns the
+// camera trajectory's path. Throws Error when a file cannot be written.
+std::string WriteRunTrajectories(const System& system, const std::string& out_dir,
+                                 TrajectoryFormat format);
 
 // A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
 // entry whose timestamp repeats or goes back) is skipped with one warning and counted; more than
@@ -73,7 +101,8 @@ struct RunSummary {
   std::map<std::string, std::size_t> frames_rejected_by_fault;
   std::vector<RejectedFrame> frames_rejected_examples;
   std::string camera_trajectory_path;
-  std::string dynamic_setup;  // e.g. "segmenter gt, dynamic on"
+  TrajectoryFormat trajectory_format = TrajectoryFormat::kTum;  // of the trajectory files
+  std::string dynamic_setup;                                    // e.g. "segmenter gt, dynamic on"
   // Where the masks came from (DynamicRunSetup::segmenter_label), and whether they were the
   // dataset's ground truth: an oracle, which every shown result must say.
   std::string segmenter;
