@@ -24,6 +24,8 @@ struct EvalArguments {
   std::string json_path;
   std::string plot_path;
   std::string dataset;  // sequence folder whose frames coverage counts against
+  bool no_align = false;
+  std::string alignment_from;  // an eval --json file whose alignment is used
 };
 
 // The frames `drvslam run` processes in the sequence: colour images paired with depth.
@@ -35,6 +37,10 @@ void RunEval(EvalArguments args) {
   // Check every option before reading files, so a typo is reported at once.
   args.ate.Check();
   if (!args.dataset.empty()) args.ate.sequence_frames = SequenceFrames(args.dataset);
+  if (args.no_align) args.ate.fixed_alignment = drvslam::Alignment();
+  if (!args.alignment_from.empty()) {
+    args.ate.fixed_alignment = drvslam::ReadEvalAlignment(args.alignment_from);
+  }
   drvslam::RpeOptions rpe_options;
   rpe_options.delta = args.rpe_delta;
   rpe_options.offset = args.ate.offset;
@@ -88,6 +94,15 @@ const bool kRegistered = drvslam::cli::RegisterCommand("eval", [](CLI::App& root
   cmd->add_option("--dataset", args->dataset,
                   "sequence folder (TUM layout): its frame count, as --frames")
       ->excludes(frames);
+  auto* no_align = cmd->add_flag(
+      "--no-align", args->no_align,
+      "fit no alignment: the estimate is compared in its own frame (it must already be in the "
+      "ground truth's)");
+  cmd->add_option("--alignment-from", args->alignment_from,
+                  "fit no alignment; use the one in this --json file of an earlier eval (e.g. "
+                  "of the run whose map this run localized in)")
+      ->excludes(no_align)
+      ->excludes("--scale");
   cmd->add_option("--json", args->json_path, "write the results as JSON to this file");
   cmd->add_option("--plot", args->plot_path,
                   "write a PNG: top view of ground truth and aligned estimate, ATE over time");
