@@ -69,11 +69,20 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
 using Clock = std::chrono::steady_clock;
 
 // `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
+// `save_map`: where to write the map (empty: nowhere).
 void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
-                  RunSummary* summary) {
+                  const std::string& save_map, RunSummary* summary) {
   // Local mapping finishes its queue first: the trajectories then include its corrections.
   system.Shutdown();
   summary->wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  if (!save_map.empty()) {
+    const Clock::time_point save_started = Clock::now();
+    system.SaveMap(save_map);
+    summary->map_save_ms =
+        std::chrono::duration<double, std::milli>(Clock::now() - save_started).count();
+    summary->map_saved_to = save_map;
+    summary->map_bytes = static_cast<std::size_t>(fs::file_size(save_map));
+  }
   // Assembled with the final keyframe poses; stats then count the exported points.
   if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string());
   summary->stats = system.Stats();
@@ -97,7 +106,8 @@ void FileRejections(const FrameRejections& rejections, RunSummary* summary) {
 void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::time_point started,
                               RunSummary* summary) {
   try {
-    WriteOutputs(system, out_dir, started, summary);
+    // A map is saved only from a run that ended well.
+    WriteOutputs(system, out_dir, started, /*save_map=*/"", summary);
   } catch (const std::exception& error) {
     spdlog::error("could not write the outputs after the failure: {}", error.what());
   } catch (...) {
@@ -130,6 +140,11 @@ RunSummary RunSequence(const RunOptions& options,
   system_options.relocalization = resolved.relocalization;
   system_options.dense = resolved.dense;
   system_options.loop = resolved.loop;
+  system_options.load_map = options.load_map;
+  system_options.localization = options.localization;
+  if (options.localization && options.load_map.empty()) {
+    throw Error("--localization needs --load-map FILE (a map to localize in)");
+  }
   if (!options.loop.empty()) {
     if (options.loop != "on" && options.loop != "off") {
       throw Error("--loop = " + options.loop + " must be on or off");
@@ -241,7 +256,7 @@ RunSummary RunSequence(const RunOptions& options,
   }
   finish_feeder();
   FileRejections(rejections, &summary);
-  WriteOutputs(system, out_dir, started, &summary);
+  WriteOutputs(system, out_dir, started, options.save_map, &summary);
   if (rejections.Accepted() == 0 && rejections.Count() > 0 && !summary.interrupted) {
     throw Error(options.dataset + ": none of the " + std::to_string(total) +
                 " frames could be used (" + std::to_string(rejections.Count()) +
@@ -318,6 +333,18 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
                     {"global_ba_ms", l.global_ba_ms},
                     {"loops", loops}};
   }
+  const auto path_or_null = [](const std::string& path) {
+    return path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path);
+  };
+  json["map_file"] = {{"loaded", path_or_null(s.map_loaded_from)},
+                      {"loaded_keyframes", s.map_loaded_keyframes},
+                      {"loaded_points", s.map_loaded_points},
+                      {"loaded_dense_points", s.map_loaded_dense_points},
+                      {"load_ms", s.map_load_ms},
+                      {"localization", s.localization},
+                      {"saved", path_or_null(summary.map_saved_to)},
+                      {"bytes", summary.map_bytes},
+                      {"save_ms", summary.map_save_ms}};
   const LocalMappingStats& m = s.mapping;
   json["mapping"] = {{"keyframes_processed", m.keyframes_processed},
                      {"points_from_tracking", m.points_from_tracking},
