@@ -32,6 +32,8 @@ struct EvalArguments {
   // KITTI times files (default: <stem>_times.txt or times.txt beside the poses).
   std::string gt_times;
   std::string est_times;
+  bool no_align = false;
+  std::string alignment_from;  // an eval --json file whose alignment is used
 };
 
 // How one file is read: its format (given, else detected) and KITTI times file.
@@ -60,6 +62,10 @@ void RunEval(EvalArguments args) {
   // Check every option before reading files, so a typo is reported at once.
   args.ate.Check();
   if (!args.dataset.empty()) args.ate.sequence_frames = SequenceFrames(args.dataset);
+  if (args.no_align) args.ate.fixed_alignment = drvslam::Alignment();
+  if (!args.alignment_from.empty()) {
+    args.ate.fixed_alignment = drvslam::ReadEvalAlignment(args.alignment_from);
+  }
   drvslam::RpeOptions rpe_options;
   rpe_options.delta = args.rpe_delta;
   rpe_options.offset = args.ate.offset;
@@ -137,6 +143,15 @@ const bool kRegistered = drvslam::cli::RegisterCommand("eval", [](CLI::App& root
   cmd->add_option("--dataset", args->dataset,
                   "sequence folder (TUM layout): its frame count, as --frames")
       ->excludes(frames);
+  auto* no_align = cmd->add_flag(
+      "--no-align", args->no_align,
+      "fit no alignment: the estimate is compared in its own frame (it must already be in the "
+      "ground truth's)");
+  cmd->add_option("--alignment-from", args->alignment_from,
+                  "fit no alignment; use the one in this --json file of an earlier eval (e.g. "
+                  "of the run whose map this run localized in)")
+      ->excludes(no_align)
+      ->excludes("--scale");
   cmd->add_option("--json", args->json_path, "write the results as JSON to this file");
   cmd->add_option("--plot", args->plot_path,
                   "write a PNG: top view of ground truth and aligned estimate, ATE over time");

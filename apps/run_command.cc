@@ -107,6 +107,16 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
     std::printf("loops:       %ld closed (%ld detected, %ld rejected), %ld global BA\n",
                 l.corrections, l.detections, l.rejected, l.global_bas);
   }
+  if (!s.map_loaded_from.empty()) {
+    std::printf("map loaded:  %s: %zu keyframes, %zu map points, %zu dense points in %.0f ms%s\n",
+                s.map_loaded_from.c_str(), s.map_loaded_keyframes, s.map_loaded_points,
+                s.map_loaded_dense_points, s.map_load_ms,
+                s.localization ? " (localization only: nothing added)" : "");
+  }
+  if (!summary.map_saved_to.empty()) {
+    std::printf("map saved:   %s: %zu bytes in %.0f ms\n", summary.map_saved_to.c_str(),
+                summary.map_bytes, summary.map_save_ms);
+  }
   std::printf("wrote:       %s/{%s,stats.json}\n", out_dir.c_str(),
               TrajectoryFileNames(summary.trajectory_format).c_str());
   if (s.dense) {
@@ -167,6 +177,18 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
   command->add_option("--frame-log", options->frame_log,
                       "write one line per frame there: wall clock, ms inside TrackRGBD, "
                       "tracked, keyframes, map points, resident memory (tab-separated)");
+  command->add_option("--save-map", options->save_map,
+                      "after the run, save the map (keyframes, map points, graph, dense map) to "
+                      "this file, for --load-map");
+  auto* load_map = command->add_option(
+      "--load-map", options->load_map,
+      "start from a map saved with --save-map: the first frame is relocalized in it, then "
+      "mapping goes on (loop closing can join new keyframes to loaded ones)");
+  command
+      ->add_flag("--localization", options->localization,
+                 "with --load-map: track against the loaded map only, adding no keyframes or "
+                 "map points, and relocalize whenever lost")
+      ->needs(load_map);
   command->add_option("--debug-frames", dynamic.debug_dir,
                       "write one picture per frame there: kept features green, removed red, "
                       "moving masks red, static masks green");

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -24,6 +25,9 @@
 #include "drvslam/loop/relocalizer.h"
 #include "drvslam/loop/vocabulary_io.h"
 #include "drvslam/map/map.h"
+#include "drvslam/mapfile/map_capture.h"
+#include "drvslam/mapfile/map_compatibility.h"
+#include "drvslam/mapfile/map_file.h"
 #include "drvslam/mapping/local_mapper.h"
 #include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
@@ -98,6 +102,10 @@ struct System::Impl {
   // Hands the finished frame to the observer and records its time ("observer").
   void Observe(const TrackResult& track, const cv::Mat& bgr,
                std::shared_ptr<const FrameFeatures> features, double frame_ms);
+  // SystemOptions::load_map: the saved map into the map, the keyframe database and the dense
+  // map; tracking then starts by relocalizing in it.
+  void LoadMap(const std::string& path);
+  void SaveMap(const std::string& path);
 
   Settings settings;
   SystemOptions options;
@@ -119,6 +127,11 @@ struct System::Impl {
   LocalMapper local_mapper;
   double total_ms = 0.0;
   std::shared_ptr<FrameObserver> observer;
+  // What LoadMap loaded (Stats).
+  std::size_t map_loaded_keyframes = 0;
+  std::size_t map_loaded_points = 0;
+  std::size_t map_loaded_dense_points = 0;
+  double map_load_ms = 0.0;
 };
 
 System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_options,
@@ -171,6 +184,74 @@ System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_op
     dynamic = std::make_unique<DynamicFrontEnd>(std::move(config), settings.orb.n_features, map,
                                                 &timings);
   }
+  if (!options.load_map.empty()) {
+    LoadMap(options.load_map);
+  } else if (options.localization) {
+    throw Error(
+        "localization mode needs a map to localize in (SystemOptions::load_map, "
+        "--load-map)");
+  }
+}
+
+void System::Impl::LoadMap(const std::string& path) {
+  const Stopwatch watch;
+  const MapFileContents contents = ReadMapFile(path);
+  for (const std::string& warning :
+       CheckMapCompatibility(contents, settings, vocabulary.get(), path)) {
+    spdlog::warn("{}", warning);
+  }
+  const int level = DirectIndexLevel(*vocabulary);
+  const auto attach_bow = [&](KeyFrame& keyframe) {
+    BowVector bow;
+    FeatureVector features;
+    vocabulary->Transform(keyframe.Features().Descriptors(), &bow, &features, level);
+    keyframe.SetBow(std::move(bow), std::move(features));
+  };
+  const std::map<long, std::shared_ptr<KeyFrame>> keyframes =
+      RestoreMap(contents, frame_factory.Geometry(), attach_bow, &map, path);
+  // In the database, so relocalization and loop detection find the loaded places.
+  for (const auto& [id, keyframe] : keyframes) keyframe_database.Add(keyframe);
+  if (dense && contents.dense) {
+    dense->Restore(*contents.dense, [&keyframes](long id) -> std::shared_ptr<const KeyFrame> {
+      const auto it = keyframes.find(id);
+      return it == keyframes.end() ? nullptr : it->second;
+    });
+    dense_has_map = true;
+    map_loaded_dense_points = contents.dense->coarse.size() + contents.dense->fine.size();
+  }
+  tracker.StartInLoadedMap();
+  tracker.SetLocalizationOnly(options.localization);
+  map_loaded_keyframes = keyframes.size();
+  map_loaded_points = map.MapPointCount();
+  map_load_ms = watch.ElapsedMs();
+  spdlog::info("{}: loaded {} keyframes, {} map points{} in {:.0f} ms{}", path,
+               map_loaded_keyframes, map_loaded_points,
+               map_loaded_dense_points > 0
+                   ? ", " + std::to_string(map_loaded_dense_points) + " dense points"
+                   : std::string(),
+               map_load_ms, options.localization ? " (localization only)" : "");
+}
+
+void System::Impl::SaveMap(const std::string& path) {
+  if (!vocabulary) {
+    throw Error(path +
+                ": cannot save the map: it needs the bag-of-words vocabulary, and none is "
+                "loaded (Relocalization.enabled, Relocalization.vocabulary)");
+  }
+  MapFileContents contents;
+  contents.settings_digest = SettingsDigest(settings);
+  contents.settings_text = FormatSettings(settings);
+  contents.camera = settings.camera;
+  contents.pyramid_levels = settings.orb.n_levels;
+  contents.pyramid_scale_factor = settings.orb.scale_factor;
+  contents.vocabulary = IdentifyVocabulary(*vocabulary);
+  {
+    // No bundle adjustment or loop correction moves poses while they are read.
+    std::lock_guard<std::mutex> lock(map.UpdateMutex());
+    CaptureMap(map, &contents);
+  }
+  if (dense) contents.dense = dense->Snapshot();
+  WriteMapFile(path, contents);
 }
 
 void System::Impl::Shutdown() {
@@ -330,6 +411,12 @@ SystemStats System::Impl::Stats() const {
   stats.relocalizations = tracker.Relocalizations();
   stats.relocalization_attempts = relocalizer ? relocalizer->Attempts() : 0;
   stats.vocabulary_load_ms = vocabulary_load_ms;
+  stats.map_loaded_from = options.load_map;
+  stats.map_loaded_keyframes = map_loaded_keyframes;
+  stats.map_loaded_points = map_loaded_points;
+  stats.map_loaded_dense_points = map_loaded_dense_points;
+  stats.map_load_ms = map_load_ms;
+  stats.localization = options.localization;
   stats.mapping = local_mapper.Stats();
   stats.stages = timings.Summaries();
   stats.tracking_fps = total_ms > 0 ? 1000.0 * stats.frames / total_ms : 0.0;
@@ -350,6 +437,8 @@ void System::Shutdown() { impl_->Shutdown(); }
 TrackResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
   return impl_->Track(bgr, depth, timestamp);
 }
+
+void System::SaveMap(const std::string& path) const { impl_->SaveMap(path); }
 
 Trajectory System::CameraTrajectory() const { return impl_->tracker.Recorder().CameraTrajectory(); }
 

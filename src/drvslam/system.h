@@ -14,6 +14,7 @@
 #include <memory>
 #include <opencv2/core/mat.hpp>
 #include <vector>
+#include <string>
 
 #include "drvslam/core/se3.h"
 #include "drvslam/io/trajectory_io.h"
@@ -71,6 +72,13 @@ class System {
   // Lets local mapping (and dense mapping) finish every queued keyframe and stops its thread;
   // later frames are tracked without mapping. Idempotent.
   void Shutdown();
+
+  // Writes the map (keyframes, map points, covisibility and spanning tree, the dense map when
+  // dense mapping runs) with the settings digest, the camera intrinsics and the vocabulary's
+  // identity to `path` (mapfile/map_file.h), for SystemOptions::load_map. Call it after
+  // Shutdown for the complete map; while mapping runs it saves the map as it is. Needs the
+  // bag-of-words vocabulary. Throws drvslam::Error naming the file when it cannot be written.
+  void SaveMap(const std::string& path) const;
 
   // Read while mapping still runs, these reflect the map as it is at that moment.
   Trajectory CameraTrajectory() const;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "drvslam/dense/dense_options.h"
 #include "drvslam/dynamic/dynamic_front_end.h"
@@ -29,6 +30,14 @@ struct SystemOptions {
   // The loop closing thread (LoopClosing.*); it needs the vocabulary relocalization loads, so
   // with relocalization off (or no vocabulary) it is off too, with a warning.
   LoopClosingOptions loop;
+  // A map file (System::SaveMap) to start from: its keyframes, points and graph (and, with
+  // dense mapping on, its dense map) are loaded before the first frame, which is relocalized in
+  // it. Needs the vocabulary the map was saved with. Empty: start a new map.
+  std::string load_map;
+  // With load_map: track against the loaded map only, adding no keyframes or map points, and
+  // relocalize whenever lost (local mapping and loop closing then have nothing to do). Without
+  // it a loaded map is extended, and loop closing can join new keyframes to loaded ones.
+  bool localization = false;
 };
 
 }  // namespace drvslam

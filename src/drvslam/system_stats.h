@@ -29,6 +29,14 @@ struct SystemStats {
   int relocalizations = 0;  // times tracking was lost and found again
   int relocalization_attempts = 0;
   double vocabulary_load_ms = 0.0;  // 0 when no vocabulary was loaded
+  // SystemOptions::load_map: the map file loaded at the start (empty: none), what it held and
+  // how long reading and rebuilding it took.
+  std::string map_loaded_from;
+  std::size_t map_loaded_keyframes = 0;
+  std::size_t map_loaded_points = 0;
+  std::size_t map_loaded_dense_points = 0;
+  double map_load_ms = 0.0;
+  bool localization = false;  // SystemOptions::localization
   LocalMappingStats mapping;
   std::map<std::string, TimingSummary> stages;  // per-stage ms
   // Frames per second of the time spent inside TrackRGBD calls only (not reading images, not

@@ -32,6 +32,23 @@ TEST(ComputeAteTest, RigidlyMovedEstimateHasZeroError) {
   EXPECT_LT((ate.alignment.R - SomeWorldChange().Inverse().Rotation()).norm(), 1e-9);
 }
 
+TEST(ComputeAteTest, GivenAlignmentIsUsedAsItIsNotFitted) {
+  const Trajectory gt = MakeTrajectory(100, 1000.0, 1.0 / 30.0, HelixPose);
+  const Trajectory est = InOtherWorld(gt, SomeWorldChange());
+  AteOptions options;
+  // No alignment: the estimate stays in its own world, so the error is the world change.
+  options.fixed_alignment = Alignment();
+  const AteResult unaligned = ComputeAte(gt, est, options);
+  EXPECT_FALSE(unaligned.fitted);
+  EXPECT_GT(unaligned.errors.rmse, 0.01);
+  // The alignment that undoes the world change, given: no error.
+  const SE3 undo = SomeWorldChange().Inverse();
+  options.fixed_alignment = Alignment{undo.Rotation(), undo.Translation(), 1.0};
+  const AteResult aligned = ComputeAte(gt, est, options);
+  EXPECT_LT(aligned.errors.rmse, 1e-9);
+  EXPECT_TRUE(ComputeAte(gt, est, AteOptions{}).fitted);
+}
+
 // Three poses on a line, the middle estimate lifted by h: after the best alignment the errors are
 // h/3, 2h/3, h/3 (the line cannot tilt towards the lift without making the ends worse).
 TEST(ComputeAteTest, HandComputedThreePoses) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -43,7 +44,9 @@ std::set<std::string> Keys(const nlohmann::json& object) {
 
 TEST(EvalReportTest, JsonHasExactlyTheContractKeys) {
   const nlohmann::json json = EvalReportJson(SomeAte(), SomeRpe());
-  EXPECT_EQ(Keys(json), (std::set<std::string>{"ate", "rpe"}));
+  EXPECT_EQ(Keys(json), (std::set<std::string>{"ate", "alignment", "rpe"}));
+  EXPECT_EQ(Keys(json["alignment"]),
+            (std::set<std::string>{"rotation", "translation", "scale", "fitted"}));
   EXPECT_EQ(Keys(json["ate"]),
             (std::set<std::string>{"rmse", "mean", "median", "std", "min", "max", "matched",
                                    "coverage", "coverage_of", "scale"}));
@@ -54,6 +57,31 @@ TEST(EvalReportTest, JsonHasExactlyTheContractKeys) {
   EXPECT_DOUBLE_EQ(json["ate"]["scale"].get<double>(), 1.0);
   EXPECT_EQ(json["rpe"]["pairs"].get<int>(), 760);
   EXPECT_DOUBLE_EQ(json["rpe"]["rot_rmse_deg"].get<double>(), 0.6);
+}
+
+TEST(EvalReportTest, AlignmentReadsBackForAlignmentFrom) {
+  AteResult ate = SomeAte();
+  ate.alignment.R = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  ate.alignment.t = Eigen::Vector3d(0.5, -1.25, 2.0);
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "drvslam_eval_alignment_test.json";
+  WriteEvalReportJson(path.string(), ate, SomeRpe());
+  const Alignment read = ReadEvalAlignment(path.string());
+  EXPECT_LT((read.R - ate.alignment.R).norm(), 1e-12);
+  EXPECT_EQ(read.t, ate.alignment.t);
+  EXPECT_DOUBLE_EQ(read.scale, 1.0);
+  // A file without an alignment is an error naming it.
+  {
+    std::ofstream out(path);
+    out << R"({"ate": {}})";
+  }
+  try {
+    ReadEvalAlignment(path.string());
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string() + ": no alignment"), std::string::npos);
+  }
+  std::filesystem::remove(path);
 }
 
 TEST(EvalReportTest, JsonFileRoundTripsAndBadPathIsAnError) {

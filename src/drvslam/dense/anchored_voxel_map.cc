@@ -202,4 +202,29 @@ void AnchoredVoxelMap::Clear() {
   index_.clear();
 }
 
+std::vector<DenseVoxelRecord> AnchoredVoxelMap::Records() const {
+  std::vector<DenseVoxelRecord> records;
+  records.reserve(points_.size());
+  for (const Stored& stored : points_) {
+    records.push_back({stored.anchor, stored.point, stored.weight, stored.views, stored.evidence});
+  }
+  return records;
+}
+
+void AnchoredVoxelMap::Restore(const std::vector<DenseVoxelRecord>& records,
+                               const std::vector<SE3>& T_wa) {
+  points_.clear();
+  points_.reserve(records.size());
+  for (const DenseVoxelRecord& record : records) {
+    Stored stored;
+    stored.point = record.point;
+    stored.anchor = record.anchor;
+    stored.weight = record.weight;
+    stored.views = record.views;
+    stored.evidence = record.evidence;
+    points_.push_back(stored);
+  }
+  Rekey(T_wa);
+}
+
 }  // namespace drvslam

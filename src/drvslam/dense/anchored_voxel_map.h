@@ -23,6 +23,7 @@
 #include "drvslam/core/camera.h"
 #include "drvslam/core/se3.h"
 #include "drvslam/dense/dense_point.h"
+#include "drvslam/dense/dense_snapshot.h"
 
 namespace drvslam {
 
@@ -73,6 +74,11 @@ class AnchoredVoxelMap {
                    const std::set<int>& moving_tracks, std::vector<int>* anchors = nullptr) const;
 
   void Clear();
+
+  // Every stored point as it is kept (anchor frame, evidence), for a map file.
+  std::vector<DenseVoxelRecord> Records() const;
+  // Replaces the map by saved records (anchors index T_wa), merged per voxel as Rekey does.
+  void Restore(const std::vector<DenseVoxelRecord>& records, const std::vector<SE3>& T_wa);
 
  private:
   struct Stored {

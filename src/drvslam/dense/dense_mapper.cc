@@ -381,4 +381,62 @@ DenseMapStats DenseMapper::Stats() const {
   return stats;
 }
 
+DenseMapSnapshot DenseMapper::Snapshot() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::set<int> moving;
+  if (options_.remove_dynamic) {
+    std::lock_guard<std::mutex> moving_lock(moving_mutex_);
+    moving = moving_tracks_;
+  }
+  const std::vector<SE3> poses = AnchorPoses();
+  DenseMapSnapshot snapshot;
+  // Per anchor: the live keyframe it is saved under and the move into that keyframe's frame.
+  std::vector<SE3> to_saved_frame(anchors_.size());
+  for (std::size_t a = 0; a < anchors_.size(); ++a) {
+    DenseAnchorRecord record;
+    record.T_wc = poses[a];
+    std::shared_ptr<const KeyFrame> keyframe = anchors_[a].keyframe;
+    for (int step = 0; keyframe && keyframe->IsBad() && step < kMaxParentSteps; ++step) {
+      keyframe = keyframe->Parent();
+    }
+    if (keyframe && !keyframe->IsBad()) {
+      record.keyframe_id = keyframe->Id();
+      record.T_wc = keyframe->InversePose();
+      to_saved_frame[a] = record.T_wc.Inverse() * poses[a];
+    }
+    snapshot.anchors.push_back(record);
+  }
+  const auto convert = [&](const std::vector<DenseVoxelRecord>& records) {
+    std::vector<DenseVoxelRecord> out;
+    out.reserve(records.size());
+    for (DenseVoxelRecord record : records) {
+      if (record.point.track >= 0 && moving.count(record.point.track)) continue;
+      record.point.track = -1;
+      record.point.position =
+          (to_saved_frame[record.anchor] * record.point.position.cast<double>()).cast<float>();
+      out.push_back(record);
+    }
+    return out;
+  };
+  snapshot.coarse = convert(coarse_.Records());
+  snapshot.fine = convert(fine_.Records());
+  return snapshot;
+}
+
+void DenseMapper::Restore(const DenseMapSnapshot& snapshot,
+                          const std::function<std::shared_ptr<const KeyFrame>(long)>& keyframe_of) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  anchors_.clear();
+  for (const DenseAnchorRecord& record : snapshot.anchors) {
+    Anchor anchor;
+    anchor.T_wc = record.T_wc;
+    if (record.keyframe_id >= 0) anchor.keyframe = keyframe_of(record.keyframe_id);
+    anchors_.push_back(std::move(anchor));
+  }
+  const std::vector<SE3> poses = AnchorPoses();
+  coarse_.Restore(snapshot.coarse, poses);
+  fine_.Restore(snapshot.fine, poses);
+  since_compaction_ = 0;
+}
+
 }  // namespace drvslam

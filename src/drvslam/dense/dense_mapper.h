@@ -16,6 +16,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -30,6 +31,7 @@
 #include "drvslam/dense/anchored_voxel_map.h"
 #include "drvslam/dense/dense_frame.h"
 #include "drvslam/dense/dense_options.h"
+#include "drvslam/dense/dense_snapshot.h"
 #include "drvslam/map/keyframe.h"
 
 namespace drvslam {
@@ -98,6 +100,17 @@ class DenseMapper {
   DenseMapRays AssembleRays();
   DenseMapStats Stats() const;
   const DenseMapOptions& Options() const { return options_; }
+
+  // The integrated map for a map file (keyframes still waiting for their later frames are not
+  // in it: call Shutdown first for all). An anchor whose keyframe local mapping removed is
+  // saved under its nearest live ancestor, its points moved into that keyframe's frame; points
+  // on objects seen moving are left out, and object tracks are dropped (their ids belong to
+  // this run).
+  DenseMapSnapshot Snapshot() const;
+  // Replaces the map by a saved one before any frame was handed over; `keyframe_of` gives the
+  // loaded keyframe of a saved id (null: the anchor stays at its saved pose).
+  void Restore(const DenseMapSnapshot& snapshot,
+               const std::function<std::shared_ptr<const KeyFrame>(long)>& keyframe_of);
 
  private:
   struct KeyFrameJob {

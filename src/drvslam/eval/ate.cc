@@ -68,8 +68,13 @@ AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptio
   }
 
   AteResult result;
-  result.alignment = AlignPoints(est_points, gt_points, options.with_scale);
-  result.with_scale = options.with_scale;
+  if (options.fixed_alignment) {
+    result.alignment = *options.fixed_alignment;
+    result.fitted = false;
+  } else {
+    result.alignment = AlignPoints(est_points, gt_points, options.with_scale);
+    result.with_scale = options.with_scale;
+  }
   result.matched = pairs.size();
   result.matches.reserve(pairs.size());
   std::vector<double> errors;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "drvslam/eval/alignment.h"
@@ -25,6 +26,11 @@ struct AteOptions {
   // ground-truth poses instead (TUM ground truth is 100 Hz against 30 Hz images, so that share
   // stays well below 1 however well a run tracks).
   std::size_t sequence_frames = 0;
+  // An alignment to use as it is instead of fitting one (estimate frame -> ground-truth frame):
+  // `drvslam eval --no-align` (the identity: the estimate is already in the ground truth's
+  // frame) or --alignment-from (another run's, e.g. the run that made a map this one localized
+  // in). nullopt: fitted as the TUM script fits it.
+  std::optional<Alignment> fixed_alignment;
 
   // Throws Error naming the option (--max-diff, --offset) when a value is unusable.
   void Check() const;
@@ -48,6 +54,7 @@ const char* CoverageOfName(CoverageOf of);
 struct AteResult {
   Alignment alignment;      // estimate frame -> ground-truth frame
   bool with_scale = false;  // whether alignment.scale was estimated (else it is 1)
+  bool fitted = true;       // false: alignment is AteOptions::fixed_alignment
   ErrorStatistics errors;   // over matches, metres
   std::size_t matched = 0;
   // Matched poses over the sequence's frames (or the ground-truth poses, see coverage_of): a

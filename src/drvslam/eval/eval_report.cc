@@ -38,6 +38,15 @@ nlohmann::json EvalReportJson(const AteResult& ate, const std::optional<RpeResul
                  {"coverage", ate.coverage},
                  {"coverage_of", CoverageOfName(ate.coverage_of)},
                  {"scale", ate.alignment.scale}};
+  nlohmann::json rotation = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r) {
+    rotation.push_back({ate.alignment.R(r, 0), ate.alignment.R(r, 1), ate.alignment.R(r, 2)});
+  }
+  json["alignment"] = {
+      {"rotation", rotation},
+      {"translation", {ate.alignment.t.x(), ate.alignment.t.y(), ate.alignment.t.z()}},
+      {"scale", ate.alignment.scale},
+      {"fitted", ate.fitted}};
   if (rpe) {
     json["rpe"] = {{"trans_rmse", rpe->trans_rmse}, {"rot_rmse_deg", rpe->rot_rmse_deg},
                    {"trans_mean", rpe->trans_mean}, {"rot_mean_deg", rpe->rot_mean_deg},
@@ -57,10 +66,39 @@ void WriteEvalReportJson(const std::string& path, const AteResult& ate,
   if (!out) throw Error(path + ": writing the --json file failed");
 }
 
+Alignment ReadEvalAlignment(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the --alignment-from file");
+  try {
+    const nlohmann::json json = nlohmann::json::parse(in);
+    const nlohmann::json& a = json.at("alignment");
+    Alignment alignment;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) alignment.R(r, c) = a.at("rotation").at(r).at(c).get<double>();
+      alignment.t[r] = a.at("translation").at(r).get<double>();
+    }
+    alignment.scale = a.at("scale").get<double>();
+    const double orthogonality =
+        (alignment.R * alignment.R.transpose() - Eigen::Matrix3d::Identity()).norm();
+    if (!alignment.R.allFinite() || orthogonality > 1e-6 || alignment.R.determinant() < 0 ||
+        !alignment.t.allFinite() || !(alignment.scale > 0)) {
+      throw Error(path + ": alignment is not a rotation, translation and positive scale");
+    }
+    return alignment;
+  } catch (const nlohmann::json::exception& error) {
+    throw Error(path + ": no alignment (a drvslam eval --json file): " + error.what());
+  }
+}
+
 std::string FormatEvalTable(const AteResult& ate, const std::optional<RpeResult>& rpe) {
   std::string table;
-  table += Printf("Absolute trajectory error (%s alignment, scale %.6f)\n",
-                  ate.with_scale ? "similarity" : "rigid", ate.alignment.scale);
+  if (ate.fitted) {
+    table += Printf("Absolute trajectory error (%s alignment, scale %.6f)\n",
+                    ate.with_scale ? "similarity" : "rigid", ate.alignment.scale);
+  } else {
+    table += Printf("Absolute trajectory error (given alignment, not fitted; scale %.6f)\n",
+                    ate.alignment.scale);
+  }
   table += MetresRow("rmse", ate.errors.rmse);
   table += MetresRow("mean", ate.errors.mean);
   table += MetresRow("median", ate.errors.median);

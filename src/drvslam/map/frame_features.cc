@@ -30,8 +30,7 @@ SensorGeometry::SensorGeometry(const CameraOptions& camera_options,
 }
 
 FrameFeatures::FrameFeatures(std::shared_ptr<const SensorGeometry> geometry,
-                             std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors,
-                             const cv::Mat& depth)
+                             std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors)
     : geometry_(std::move(geometry)),
       keypoints_(std::move(keypoints)),
       descriptors_(std::move(descriptors)) {
@@ -48,22 +47,45 @@ FrameFeatures::FrameFeatures(std::shared_ptr<const SensorGeometry> geometry,
     points = camera.Undistort(points);
     for (std::size_t i = 0; i < n; ++i) keypoints_un_[i].pt = points[i];
   }
-  // Depth is looked up at the raw (distorted) pixel, where the sensor measured it.
   depth_.assign(n, 0.f);
   right_u_.assign(n, -1.f);
-  const double bf = geometry_->Bf();
+}
+
+FrameFeatures::FrameFeatures(std::shared_ptr<const SensorGeometry> geometry,
+                             std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors,
+                             const cv::Mat& depth)
+    : FrameFeatures(std::move(geometry), std::move(keypoints), std::move(descriptors)) {
+  // Depth is looked up at the raw (distorted) pixel, where the sensor measured it.
   if (!depth.empty()) {
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < keypoints_.size(); ++i) {
       const int u = static_cast<int>(std::lround(keypoints_[i].pt.x));
       const int v = static_cast<int>(std::lround(keypoints_[i].pt.y));
       if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
-      const float d = depth.at<float>(v, u);
-      if (d > 0 && std::isfinite(d)) {
-        depth_[i] = d;
-        right_u_[i] = static_cast<float>(keypoints_un_[i].pt.x - bf / d);
-      }
+      SetDepth(i, depth.at<float>(v, u));
     }
   }
+  BuildGrid();
+}
+
+FrameFeatures::FrameFeatures(std::shared_ptr<const SensorGeometry> geometry,
+                             std::vector<cv::KeyPoint> keypoints, cv::Mat descriptors,
+                             const std::vector<float>& keypoint_depth)
+    : FrameFeatures(std::move(geometry), std::move(keypoints), std::move(descriptors)) {
+  if (keypoint_depth.size() != keypoints_.size()) {
+    throw Error("frame features: keypoint depths do not match the keypoint count");
+  }
+  for (std::size_t i = 0; i < keypoints_.size(); ++i) SetDepth(i, keypoint_depth[i]);
+  BuildGrid();
+}
+
+void FrameFeatures::SetDepth(std::size_t i, float depth) {
+  if (!(depth > 0) || !std::isfinite(depth)) return;
+  depth_[i] = depth;
+  right_u_[i] = static_cast<float>(keypoints_un_[i].pt.x - geometry_->Bf() / depth);
+}
+
+void FrameFeatures::BuildGrid() {
+  const std::size_t n = keypoints_.size();
   cell_width_inv_ = kGridCols / (geometry_->max_x - geometry_->min_x);
   cell_height_inv_ = kGridRows / (geometry_->max_y - geometry_->min_y);
   grid_.assign(kGridCols * kGridRows, {});

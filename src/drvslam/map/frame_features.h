@@ -35,6 +35,9 @@ class FrameFeatures {
   // keypoints: as extracted (distorted pixels); depth: CV_32F metres (0 = none) or empty.
   FrameFeatures(std::shared_ptr<const SensorGeometry> geometry, std::vector<cv::KeyPoint> keypoints,
                 cv::Mat descriptors, const cv::Mat& depth);
+  // The same from each keypoint's depth in metres (<= 0 = none), as a saved map holds it.
+  FrameFeatures(std::shared_ptr<const SensorGeometry> geometry, std::vector<cv::KeyPoint> keypoints,
+                cv::Mat descriptors, const std::vector<float>& keypoint_depth);
 
   std::size_t Size() const { return keypoints_un_.size(); }
   const SensorGeometry& Geometry() const { return *geometry_; }
@@ -54,6 +57,12 @@ class FrameFeatures {
                                           int max_level = -1) const;
 
  private:
+  FrameFeatures(std::shared_ptr<const SensorGeometry> geometry, std::vector<cv::KeyPoint> keypoints,
+                cv::Mat descriptors);
+  // Sets the depth of keypoint i and its virtual right coordinate (after undistortion).
+  void SetDepth(std::size_t i, float depth);
+  void BuildGrid();
+
   std::shared_ptr<const SensorGeometry> geometry_;
   std::vector<cv::KeyPoint> keypoints_;
   std::vector<cv::KeyPoint> keypoints_un_;

@@ -216,6 +216,19 @@ void KeyFrame::EraseConnection(long keyframe_id) {
   if (erased) SortConnections();
 }
 
+void KeyFrame::RestoreConnections(
+    const std::vector<std::pair<std::shared_ptr<KeyFrame>, int>>& edges,
+    const std::shared_ptr<KeyFrame>& parent) {
+  {
+    std::lock_guard<std::mutex> lock(connections_mutex_);
+    connections_.clear();
+    for (const auto& [keyframe, weight] : edges) connections_[keyframe->Id()] = {keyframe, weight};
+    first_connection_ = false;
+  }
+  SortConnections();
+  SetParent(parent);
+}
+
 std::shared_ptr<KeyFrame> KeyFrame::Parent() const {
   std::lock_guard<std::mutex> lock(connections_mutex_);
   return parent_.lock();

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "drvslam/core/se3.h"
@@ -69,6 +70,13 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   int Weight(long keyframe_id) const;
   void AddConnection(const std::shared_ptr<KeyFrame>& other, int weight);
   void EraseConnection(long keyframe_id);
+
+  // A saved map's graph (map files): sets the covisibility edges (other keyframe, weight) and the
+  // spanning-tree parent (null for the root) as the map had them, and marks the keyframe as
+  // attached to the tree, so a later UpdateConnections keeps its parent. Edges are not mirrored:
+  // every keyframe of the map restores its own.
+  void RestoreConnections(const std::vector<std::pair<std::shared_ptr<KeyFrame>, int>>& edges,
+                          const std::shared_ptr<KeyFrame>& parent);
 
   std::shared_ptr<KeyFrame> Parent() const;
   std::vector<std::shared_ptr<KeyFrame>> Children() const;

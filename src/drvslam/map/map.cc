@@ -1,5 +1,7 @@
 #include "drvslam/map/map.h"
 
+#include <algorithm>
+
 namespace drvslam {
 
 long Map::NextKeyFrameId() {
@@ -10,6 +12,12 @@ long Map::NextKeyFrameId() {
 long Map::NextMapPointId() {
   std::lock_guard<std::mutex> lock(mutex_);
   return next_map_point_id_++;
+}
+
+void Map::AdvanceIds(long next_keyframe_id, long next_map_point_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  next_keyframe_id_ = std::max(next_keyframe_id_, next_keyframe_id);
+  next_map_point_id_ = std::max(next_map_point_id_, next_map_point_id);
 }
 
 void Map::AddKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {

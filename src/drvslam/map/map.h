@@ -25,6 +25,10 @@ class Map {
   long NextKeyFrameId();
   long NextMapPointId();
 
+  // After a saved map was added: the next ids handed out are at least these, so new keyframes
+  // and points never take a loaded one's id.
+  void AdvanceIds(long next_keyframe_id, long next_map_point_id);
+
   void AddKeyFrame(const std::shared_ptr<KeyFrame>& keyframe);
   void AddMapPoint(const std::shared_ptr<MapPoint>& point);
   void EraseKeyFrame(long id);

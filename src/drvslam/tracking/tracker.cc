@@ -118,7 +118,7 @@ TrackingResult Tracker::Track(Frame frame) {
     velocity_ = current_->Pose() * last_frame_->Pose().Inverse();
   }
   result.inliers = matches_inliers_;
-  if (NeedNewKeyFrame()) {
+  if (!localization_only_ && NeedNewKeyFrame()) {
     last_evidence_.reset();
     last_keyframe_ = CreateKeyFrame(*current_, map_, options_.new_points_per_keyframe);
     AttachBow(*last_keyframe_);

@@ -56,6 +56,13 @@ class Tracker {
     place_recognition_ = place_recognition;
   }
 
+  // A saved map was loaded into the map: the first frame is relocalized in it (the tracker
+  // starts lost) instead of starting a new map. Call before the first Track.
+  void StartInLoadedMap() { state_ = TrackingState::kLost; }
+  // Localization only: frames are tracked against the map as it is; no keyframe (so no map
+  // point) is ever added.
+  void SetLocalizationOnly(bool localization_only) { localization_only_ = localization_only; }
+
   TrackingState State() const { return state_; }
   // A guess, before the next frame is tracked, that it will become a keyframe: the last
   // frame's keyframe evidence, one frame older and with 10 % fewer inliers, already asks for
@@ -100,6 +107,7 @@ class Tracker {
   PoseOptimizerOptions pose_options_;
 
   TrackingState state_ = TrackingState::kNotInitialized;
+  bool localization_only_ = false;
   std::optional<Frame> current_;
   std::optional<Frame> last_frame_;
   std::optional<SE3> velocity_;  // T_current_last of the last tracked step

@@ -103,11 +103,20 @@ void WriteSparseMap(const Map& map, const std::string& path) {
 }
 
 // `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
+// `save_map`: where to write the map (empty: nowhere).
 void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
-                  RunSummary* summary) {
+                  const std::string& save_map, RunSummary* summary) {
   // Local mapping finishes its queue first: the trajectories then include its corrections.
   system.Shutdown();
   summary->wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  if (!save_map.empty()) {
+    const Clock::time_point save_started = Clock::now();
+    system.SaveMap(save_map);
+    summary->map_save_ms =
+        std::chrono::duration<double, std::milli>(Clock::now() - save_started).count();
+    summary->map_saved_to = save_map;
+    summary->map_bytes = static_cast<std::size_t>(fs::file_size(save_map));
+  }
   // Assembled with the final keyframe poses; stats then count the exported points.
   if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string());
   summary->stats = system.Stats();
@@ -129,7 +138,8 @@ void FileRejections(const FrameRejections& rejections, RunSummary* summary) {
 void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::time_point started,
                               RunSummary* summary) {
   try {
-    WriteOutputs(system, out_dir, started, summary);
+    // A map is saved only from a run that ended well.
+    WriteOutputs(system, out_dir, started, /*save_map=*/"", summary);
   } catch (const std::exception& error) {
     spdlog::error("could not write the outputs after the failure: {}", error.what());
   } catch (...) {
@@ -153,6 +163,11 @@ RunSetup PrepareRun(const RunOptions& options) {
   system_options.loop = resolved.loop;
   if (!options.loop.empty()) system_options.loop.enabled = ParseOnOff(options.loop, "--loop");
   if (!options.dense.empty()) system_options.dense->enabled = ParseOnOff(options.dense, "--dense");
+  system_options.load_map = options.load_map;
+  system_options.localization = options.localization;
+  if (options.localization && options.load_map.empty()) {
+    throw Error("--localization needs --load-map FILE (a map to localize in)");
+  }
   setup.dynamic =
       ResolveDynamicRun(options.dynamic, options.dataset, resolved.segmentation, resolved.dynamic);
   system_options.dynamic = setup.dynamic.config;
@@ -316,7 +331,7 @@ RunSummary RunSequence(const RunOptions& options,
   }
   finish_feeder();
   FileRejections(rejections, &summary);
-  WriteOutputs(system, out_dir, started, &summary);
+  WriteOutputs(system, out_dir, started, options.save_map, &summary);
   // The page gets the final map (after the shutdown drain) and the end of the run.
   if (viewer) viewer->Finish();
   if (rejections.Accepted() == 0 && rejections.Count() > 0 && !summary.interrupted) {
@@ -402,6 +417,18 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
                     {"global_ba_ms", l.global_ba_ms},
                     {"loops", loops}};
   }
+  const auto path_or_null = [](const std::string& path) {
+    return path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path);
+  };
+  json["map_file"] = {{"loaded", path_or_null(s.map_loaded_from)},
+                      {"loaded_keyframes", s.map_loaded_keyframes},
+                      {"loaded_points", s.map_loaded_points},
+                      {"loaded_dense_points", s.map_loaded_dense_points},
+                      {"load_ms", s.map_load_ms},
+                      {"localization", s.localization},
+                      {"saved", path_or_null(summary.map_saved_to)},
+                      {"bytes", summary.map_bytes},
+                      {"save_ms", summary.map_save_ms}};
   const LocalMappingStats& m = s.mapping;
   json["mapping"] = {{"keyframes_processed", m.keyframes_processed},
                      {"points_from_tracking", m.points_from_tracking},

@@ -50,6 +50,12 @@ struct RunOptions {
   // --trajectory-format tum|kitti|euroc: the format of CameraTrajectory and KeyFrameTrajectory
   // (io/trajectory_formats.h; kitti adds *_times.txt, euroc writes .csv).
   std::string trajectory_format = "tum";
+  // --save-map FILE: after the run, the map is written there (System::SaveMap).
+  std::string save_map;
+  // --load-map FILE: the run starts from that map (SystemOptions::load_map); --localization
+  // tracks against it without mapping (SystemOptions::localization).
+  std::string load_map;
+  bool localization = false;
 };
 
 // What a run's System is built from, resolved as `drvslam run` resolves it.
@@ -116,6 +122,11 @@ struct RunSummary {
   // (stats.tracking_fps counts the time inside TrackRGBD only).
   double wall_s = 0.0;
   double fps = 0.0;
+  // --save-map: the file written, its size and the time SaveMap took (after the shutdown drain;
+  // not in wall_s).
+  std::string map_saved_to;
+  std::size_t map_bytes = 0;
+  double map_save_ms = 0.0;
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
 };
@@ -143,7 +154,8 @@ RunSummary RunSequence(const RunOptions& options,
 // dense.{DenseStatsJson}, and with loop closing loop.{keyframes_processed, detections,
 // rejected, corrections, global_bas, global_bas_interrupted, detection_ms, correction_ms,
 // global_ba_ms, loops[{keyframe, loop_keyframe, timestamp, matches, correction_m,
-// correction_deg}]}).
+// correction_deg}]}), and map_file.{loaded (path or null), loaded_keyframes, loaded_points,
+// loaded_dense_points, load_ms, localization, saved (path or null), bytes, save_ms}).
 void WriteStatsJson(const std::string& path, const RunSummary& summary);
 
 }  // namespace drvslam
