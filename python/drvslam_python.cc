@@ -124,6 +124,8 @@ struct SystemArguments {
   std::optional<bool> loop;
   bool realtime = false;
   bool strict_settings = false;
+  std::optional<std::string> load_map;
+  bool localization = false;
 };
 
 // One drvslam::System behind a mutex: Python threads may call in at once. Every call into the
@@ -143,6 +145,8 @@ class PySystem {
     options.dense = OnOff(args.dense);
     options.loop = OnOff(args.loop);
     options.strict_settings = args.strict_settings;
+    options.load_map = args.load_map.value_or("");
+    options.localization = args.localization;
     if (args.segmenter && *args.segmenter != "yolo" && *args.segmenter != "masks" &&
         *args.segmenter != "gt" && *args.segmenter != "none") {
       throw Error("segmenter = '" + *args.segmenter + "' must be yolo, masks, gt or none");
@@ -321,7 +325,8 @@ PYBIND11_MODULE(drvslam, m) {
                        std::optional<std::string> vocabulary, bool sequential,
                        std::optional<std::string> segmenter, std::optional<std::string> model,
                        std::optional<bool> dynamic, std::optional<bool> dense,
-                       std::optional<bool> loop, bool realtime, bool strict_settings) {
+                       std::optional<bool> loop, bool realtime, bool strict_settings,
+                       std::optional<std::string> load_map, bool localization) {
              SystemArguments args;
              args.settings = std::move(settings);
              args.dataset = std::move(dataset);
@@ -334,6 +339,8 @@ PYBIND11_MODULE(drvslam, m) {
              args.loop = loop;
              args.realtime = realtime;
              args.strict_settings = strict_settings;
+             args.load_map = std::move(load_map);
+             args.localization = localization;
              return std::make_unique<PySystem>(args);
            }),
            py::arg("settings") = py::none(), py::kw_only(), py::arg("dataset") = py::none(),
@@ -341,14 +348,17 @@ PYBIND11_MODULE(drvslam, m) {
            py::arg("segmenter") = py::none(), py::arg("model") = py::none(),
            py::arg("dynamic") = py::none(), py::arg("dense") = py::none(),
            py::arg("loop") = py::none(), py::arg("realtime") = false,
-           py::arg("strict_settings") = false,
+           py::arg("strict_settings") = false, py::arg("load_map") = py::none(),
+           py::arg("localization") = false,
            "settings: YAML file. dataset: sequence folder (settings.yaml, masks for "
            "segmenter 'masks'/'gt'). vocabulary: BoW file (default: the settings', else the "
            "build's). sequential: every stage on the calling thread, bit-identical runs. "
            "segmenter: 'yolo' (with model=ONNX), 'masks', 'gt' (ground-truth masks of a "
            "synthetic dataset: an ORACLE), 'none'; default as `drvslam run`. dynamic, dense, "
            "loop: True/False override the settings (None: as `drvslam run`). realtime: never "
-           "wait for masks. strict_settings: unknown settings keys are errors.")
+           "wait for masks. strict_settings: unknown settings keys are errors. load_map: start from "
+           "a map saved with save_map (the first frame relocalizes in it). localization: with "
+           "load_map, track against it without adding keyframes or map points.")
       .def("track_rgbd", &PySystem::TrackRgbd, py::arg("bgr"), py::arg("depth"),
            py::arg("timestamp"),
            "Tracks one frame. bgr: uint8 (H, W, 3) BGR or (H, W) grey, C-contiguous, of the "
@@ -360,6 +370,14 @@ PYBIND11_MODULE(drvslam, m) {
           "shutdown", [](PySystem& self) { self.Call([](System& system) { system.Shutdown(); }); },
           "Lets mapping finish its queue and stops its threads (idempotent); call it before "
           "reading the final trajectory.")
+      .def(
+          "save_map",
+          [](PySystem& self, const std::string& path) {
+            self.Call([&](System& system) { system.SaveMap(path); });
+          },
+          py::arg("path"),
+          "Writes the map (keyframes, map points, graph, dense map) for load_map; call "
+          "shutdown() first for the complete map.")
       .def(
           "trajectory",
           [](PySystem& self) {

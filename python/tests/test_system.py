@@ -191,3 +191,23 @@ def test_read_image_and_associate(sequence, tmp_path):
     # Closest pairs first, each stamp used once, sorted by the first list.
     assert drvslam.associate([1.0, 2.0, 3.0], [2.005, 0.99, 5.0]) == [(0, 1), (1, 0)]
     assert drvslam.associate([1.0], [1.5], max_difference=0.6) == [(0, 0)]
+
+
+def test_saved_map_is_loaded_and_localized_in(sequence, tmp_path):
+    mapper = make_system(sequence)
+    frames = sequence_frames(sequence)[:TRACKED]
+    for frame in frames:
+        mapper.track_rgbd(*load(frame))
+    mapper.shutdown()
+    path = tmp_path / "map.bin"
+    mapper.save_map(str(path))
+    assert path.stat().st_size > 1000
+
+    localizer = make_system(sequence, load_map=str(path), localization=True)
+    first = localizer.track_rgbd(*load(frames[-1]))
+    assert first.state == drvslam.TrackingState.OK and first.pose_valid
+    # Relocalized in the saved map's frame: the pose the mapper had for that frame.
+    _, mapped = mapper.trajectory()
+    np.testing.assert_allclose(first.T_wc[:3, 3], mapped[-1][:3, 3], atol=0.01)
+    with pytest.raises(drvslam.Error, match="map"):
+        make_system(sequence, load_map=str(tmp_path / "missing.bin"))
