@@ -321,44 +321,45 @@ PYBIND11_MODULE(drvslam, m) {
                        "SLAM on RGB-D frames. Settings are resolved as `drvslam run` resolves "
                        "them: `settings` (an ORB-SLAM2/drvslam YAML file), else "
                        "DATASET/settings.yaml when `dataset` is given, else TUM fr3 defaults.")
-      .def(py::init([](std::optional<std::string> settings, std::optional<std::string> dataset,
-                       std::optional<std::string> vocabulary, bool sequential,
-                       std::optional<std::string> segmenter, std::optional<std::string> model,
-                       std::optional<bool> dynamic, std::optional<bool> dense,
-                       std::optional<bool> loop, bool realtime, bool strict_settings,
-                       std::optional<std::string> load_map, bool localization) {
-             SystemArguments args;
-             args.settings = std::move(settings);
-             args.dataset = std::move(dataset);
-             args.vocabulary = std::move(vocabulary);
-             args.sequential = sequential;
-             args.segmenter = std::move(segmenter);
-             args.model = std::move(model);
-             args.dynamic = dynamic;
-             args.dense = dense;
-             args.loop = loop;
-             args.realtime = realtime;
-             args.strict_settings = strict_settings;
-             args.load_map = std::move(load_map);
-             args.localization = localization;
-             return std::make_unique<PySystem>(args);
-           }),
-           py::arg("settings") = py::none(), py::kw_only(), py::arg("dataset") = py::none(),
-           py::arg("vocabulary") = py::none(), py::arg("sequential") = false,
-           py::arg("segmenter") = py::none(), py::arg("model") = py::none(),
-           py::arg("dynamic") = py::none(), py::arg("dense") = py::none(),
-           py::arg("loop") = py::none(), py::arg("realtime") = false,
-           py::arg("strict_settings") = false, py::arg("load_map") = py::none(),
-           py::arg("localization") = false,
-           "settings: YAML file. dataset: sequence folder (settings.yaml, masks for "
-           "segmenter 'masks'/'gt'). vocabulary: BoW file (default: the settings', else the "
-           "build's). sequential: every stage on the calling thread, bit-identical runs. "
-           "segmenter: 'yolo' (with model=ONNX), 'masks', 'gt' (ground-truth masks of a "
-           "synthetic dataset: an ORACLE), 'none'; default as `drvslam run`. dynamic, dense, "
-           "loop: True/False override the settings (None: as `drvslam run`). realtime: never "
-           "wait for masks. strict_settings: unknown settings keys are errors. load_map: start from "
-           "a map saved with save_map (the first frame relocalizes in it). localization: with "
-           "load_map, track against it without adding keyframes or map points.")
+      .def(
+          py::init([](std::optional<std::string> settings, std::optional<std::string> dataset,
+                      std::optional<std::string> vocabulary, bool sequential,
+                      std::optional<std::string> segmenter, std::optional<std::string> model,
+                      std::optional<bool> dynamic, std::optional<bool> dense,
+                      std::optional<bool> loop, bool realtime, bool strict_settings,
+                      std::optional<std::string> load_map, bool localization) {
+            SystemArguments args;
+            args.settings = std::move(settings);
+            args.dataset = std::move(dataset);
+            args.vocabulary = std::move(vocabulary);
+            args.sequential = sequential;
+            args.segmenter = std::move(segmenter);
+            args.model = std::move(model);
+            args.dynamic = dynamic;
+            args.dense = dense;
+            args.loop = loop;
+            args.realtime = realtime;
+            args.strict_settings = strict_settings;
+            args.load_map = std::move(load_map);
+            args.localization = localization;
+            return std::make_unique<PySystem>(args);
+          }),
+          py::arg("settings") = py::none(), py::kw_only(), py::arg("dataset") = py::none(),
+          py::arg("vocabulary") = py::none(), py::arg("sequential") = false,
+          py::arg("segmenter") = py::none(), py::arg("model") = py::none(),
+          py::arg("dynamic") = py::none(), py::arg("dense") = py::none(),
+          py::arg("loop") = py::none(), py::arg("realtime") = false,
+          py::arg("strict_settings") = false, py::arg("load_map") = py::none(),
+          py::arg("localization") = false,
+          "settings: YAML file. dataset: sequence folder (settings.yaml, masks for "
+          "segmenter 'masks'/'gt'). vocabulary: BoW file (default: the settings', else the "
+          "build's). sequential: every stage on the calling thread, bit-identical runs. "
+          "segmenter: 'yolo' (with model=ONNX), 'masks', 'gt' (ground-truth masks of a "
+          "synthetic dataset: an ORACLE), 'none'; default as `drvslam run`. dynamic, dense, "
+          "loop: True/False override the settings (None: as `drvslam run`). realtime: never "
+          "wait for masks. strict_settings: unknown settings keys are errors. load_map: start from "
+          "a map saved with save_map (the first frame relocalizes in it). localization: with "
+          "load_map, track against it without adding keyframes or map points.")
       .def("track_rgbd", &PySystem::TrackRgbd, py::arg("bgr"), py::arg("depth"),
            py::arg("timestamp"),
            "Tracks one frame. bgr: uint8 (H, W, 3) BGR or (H, W) grey, C-contiguous, of the "

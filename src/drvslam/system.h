@@ -13,8 +13,8 @@
 
 #include <memory>
 #include <opencv2/core/mat.hpp>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "drvslam/core/se3.h"
 #include "drvslam/io/trajectory_io.h"

@@ -85,6 +85,26 @@ TEST(DenseMapper, WithoutEnhancementFramesOnlyTheKeyFrameCounts) {
   EXPECT_LE(CountLabel(cloud, kBookClass), 40u * 30u);
 }
 
+// A saved map (Snapshot, as --save-map writes it) restored into a new mapper exports the same
+// points: the voxels keep their view span and the anchors their time stamps, which
+// DenseMap.minViewSpan confirms points by.
+TEST(DenseMapper, ARestoredSnapshotExportsTheSameMap) {
+  const CameraOptions camera = SmallCamera();
+  DenseMapOptions options;
+  options.enhancement_frames = 0;
+  DenseMapper original(camera, options, true);
+  for (int i = 0; i < 6; ++i) original.AddKeyFrame(BookFrame(camera, i, 0.002 * i), nullptr);
+  const DenseCloud before = original.Assemble();
+  ASSERT_GT(before.size(), 100u);
+  DenseMapper restored(camera, options, true);
+  restored.Restore(original.Snapshot(), [](long) { return nullptr; });
+  const DenseCloud after = restored.Assemble();
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    ASSERT_LT((after[i].position - before[i].position).norm(), 1e-5f) << i;
+  }
+}
+
 TEST(DenseMapper, ThreadedAndSequentialGiveTheSameMap) {
   const CameraOptions camera = SmallCamera();
   DenseMapOptions options;
@@ -249,6 +269,7 @@ TEST(DenseMapper, CulledKeyFramesAreReleasedAndTheirPointsFollowTheParent) {
   const CameraOptions camera = SmallCamera();
   DenseMapOptions options;
   options.min_views = 1;
+  options.min_view_span = 0.0;  // two keyframes, no time between them
   options.enhancement_frames = 0;
   DenseMapper mapper(camera, options, true);
   const std::shared_ptr<KeyFrame> parent = MakeKeyFrame(camera, SE3(), 0);

@@ -135,7 +135,7 @@ TEST_F(MapFileTest, RoundTripKeepsEveryField) {
   const Settings settings;
   MapFileContents saved = SmallMap(settings, {1000, 1111, 0x1234});
   saved.dense = DenseMapSnapshot();
-  saved.dense->anchors.push_back({1, SE3()});
+  saved.dense->anchors.push_back({1, SE3(), 12.5});
   DenseVoxelRecord voxel;
   voxel.point.position = Eigen::Vector3f(0.1f, 0.2f, 1.5f);
   voxel.point.r = 200;
@@ -143,6 +143,7 @@ TEST_F(MapFileTest, RoundTripKeepsEveryField) {
   voxel.weight = 0.25f;
   voxel.views = 3;
   voxel.evidence = -2;
+  voxel.span = 7;
   saved.dense->coarse.push_back(voxel);
   const std::string path = (folder_ / "map.bin").string();
   const std::size_t bytes = WriteMapFile(path, saved);
@@ -175,6 +176,8 @@ TEST_F(MapFileTest, RoundTripKeepsEveryField) {
   EXPECT_EQ(loaded.dense->coarse[0].point.position, voxel.point.position);
   EXPECT_EQ(loaded.dense->coarse[0].point.label, 56);
   EXPECT_EQ(loaded.dense->coarse[0].evidence, -2);
+  EXPECT_EQ(loaded.dense->coarse[0].span, 7);
+  EXPECT_EQ(loaded.dense->anchors[0].timestamp, 12.5);
 }
 
 TEST_F(MapFileTest, LoadedMapHasTheSavedGraphAndBagsOfWords) {

@@ -206,7 +206,8 @@ std::vector<DenseVoxelRecord> AnchoredVoxelMap::Records() const {
   std::vector<DenseVoxelRecord> records;
   records.reserve(points_.size());
   for (const Stored& stored : points_) {
-    records.push_back({stored.anchor, stored.point, stored.weight, stored.views, stored.evidence});
+    records.push_back(
+        {stored.anchor, stored.point, stored.weight, stored.views, stored.evidence, stored.span});
   }
   return records;
 }
@@ -221,7 +222,8 @@ void AnchoredVoxelMap::Restore(const std::vector<DenseVoxelRecord>& records,
     stored.anchor = record.anchor;
     stored.weight = record.weight;
     stored.views = record.views;
-    stored.evidence = record.evidence;
+    stored.evidence = static_cast<int8_t>(record.evidence);
+    stored.span = record.span;
     points_.push_back(stored);
   }
   Rekey(T_wa);

@@ -395,6 +395,7 @@ DenseMapSnapshot DenseMapper::Snapshot() const {
   for (std::size_t a = 0; a < anchors_.size(); ++a) {
     DenseAnchorRecord record;
     record.T_wc = poses[a];
+    record.timestamp = anchors_[a].timestamp;
     std::shared_ptr<const KeyFrame> keyframe = anchors_[a].keyframe;
     for (int step = 0; keyframe && keyframe->IsBad() && step < kMaxParentSteps; ++step) {
       keyframe = keyframe->Parent();
@@ -430,6 +431,7 @@ void DenseMapper::Restore(const DenseMapSnapshot& snapshot,
   for (const DenseAnchorRecord& record : snapshot.anchors) {
     Anchor anchor;
     anchor.T_wc = record.T_wc;
+    anchor.timestamp = record.timestamp;
     if (record.keyframe_id >= 0) anchor.keyframe = keyframe_of(record.keyframe_id);
     anchors_.push_back(std::move(anchor));
   }

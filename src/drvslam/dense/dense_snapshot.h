@@ -18,11 +18,13 @@ struct DenseVoxelRecord {
   float weight = 0.0f;
   uint16_t views = 0;
   int16_t evidence = 0;
+  uint8_t span = 0;  // anchors from the first view to the latest (DenseMap.minViewSpan)
 };
 
 struct DenseAnchorRecord {
-  long keyframe_id = -1;  // the keyframe it follows; -1: fixed at T_wc
-  SE3 T_wc;               // the anchor's pose when the snapshot was taken
+  long keyframe_id = -1;   // the keyframe it follows; -1: fixed at T_wc
+  SE3 T_wc;                // the anchor's pose when the snapshot was taken
+  double timestamp = 0.0;  // its keyframe's time stamp (seconds), what view spans are timed by
 };
 
 struct DenseMapSnapshot {

@@ -211,7 +211,7 @@ std::vector<MapPointRecord> ReadPoints(ByteReader& in) {
   return points;
 }
 
-constexpr std::size_t kVoxelBytes = 4 + 12 + 3 + 2 + 4 + 4 + 2 + 2;
+constexpr std::size_t kVoxelBytes = 4 + 12 + 3 + 2 + 4 + 4 + 2 + 2 + 1;
 
 void WriteVoxels(ByteWriter& out, const std::vector<DenseVoxelRecord>& voxels) {
   out.U64(voxels.size());
@@ -226,6 +226,7 @@ void WriteVoxels(ByteWriter& out, const std::vector<DenseVoxelRecord>& voxels) {
     out.F32(v.weight);
     out.U16(v.views);
     out.I16(v.evidence);
+    out.U8(v.span);
   }
 }
 
@@ -242,6 +243,7 @@ std::vector<DenseVoxelRecord> ReadVoxels(ByteReader& in, std::size_t anchors) {
     v.weight = in.F32();
     v.views = in.U16();
     v.evidence = in.I16();
+    v.span = in.U8();
     if (v.anchor < 0 || static_cast<std::size_t>(v.anchor) >= anchors) {
       in.Fail("dense point anchored to " + std::to_string(v.anchor) + " of " +
               std::to_string(anchors) + " anchors");
@@ -256,6 +258,7 @@ void WriteDense(ByteWriter& out, const DenseMapSnapshot& dense) {
   for (const DenseAnchorRecord& anchor : dense.anchors) {
     out.I64(anchor.keyframe_id);
     WriteSe3(out, anchor.T_wc);
+    out.F64(anchor.timestamp);
   }
   WriteVoxels(out, dense.coarse);
   WriteVoxels(out, dense.fine);
@@ -263,10 +266,11 @@ void WriteDense(ByteWriter& out, const DenseMapSnapshot& dense) {
 
 DenseMapSnapshot ReadDense(ByteReader& in) {
   DenseMapSnapshot dense;
-  dense.anchors.resize(in.Count(8 + 56));
+  dense.anchors.resize(in.Count(8 + 56 + 8));
   for (DenseAnchorRecord& anchor : dense.anchors) {
     anchor.keyframe_id = static_cast<long>(in.I64());
     anchor.T_wc = ReadSe3(in);
+    anchor.timestamp = in.F64();
   }
   dense.coarse = ReadVoxels(in, dense.anchors.size());
   dense.fine = ReadVoxels(in, dense.anchors.size());
