@@ -235,11 +235,13 @@ std::string FormatBenchmarkMarkdown(const BenchmarkReport& report) {
       "median; tracked share median and min; frames lost (after initialization) median; wall "
       "time of the whole run (start-up, shutdown and writing included) and frames per wall "
       "second, median; the tracking thread's time per frame (stage `total`: each run's median "
-      "and p95, median over runs); realtime runs: frames skipped (median, max) and the time "
-      "from the camera's first frame until every thread drained (wall time without start-up, "
-      "decoding the recording ahead and writing the outputs; median, max).\n\n";
-
+      "and p95, median over runs)";
   const bool with_skipped = AnyFramesSkipped(report);
+  text += with_skipped
+              ? "; frames skipped (median, max) and, for realtime runs, the time from the "
+                "camera's first frame until every thread drained (wall time without start-up, "
+                "decoding the recording ahead and writing the outputs; median, max).\n\n"
+              : ".\n\n";
   text +=
       "| entry | segmenter | dynamic | mode | runs | frames | ATE median (cm) | ATE min (cm) | "
       "ATE max (cm) | ATE std (cm) | RPE 1 s trans (cm) | RPE 1 s rot (deg) | tracked median | "
