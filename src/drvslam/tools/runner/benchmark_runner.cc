@@ -205,6 +205,28 @@ std::string ReadFirstLine(const std::string& path) {
   return line;
 }
 
+// A figure only some runs report (the realtime ones): summarized only when every finished run
+// reports it, so an entry's statistics never mix runs with and without it.
+class FigureOfEveryRun {
+ public:
+  template <typename T>
+  void Add(const std::optional<T>& value) {
+    if (value) {
+      values_.push_back(static_cast<double>(*value));
+    } else {
+      complete_ = false;
+    }
+  }
+  std::optional<ErrorStatistics> Statistics(std::size_t finished) const {
+    if (finished == 0 || !complete_) return std::nullopt;
+    return ComputeErrorStatistics(values_);
+  }
+
+ private:
+  std::vector<double> values_;
+  bool complete_ = true;
+};
+
 }  // namespace
 
 std::size_t BenchmarkReport::FailedRuns() const {
@@ -216,12 +238,10 @@ std::size_t BenchmarkReport::FailedRuns() const {
 }
 
 BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
-  std::vector<double> ate, rpe_trans, rpe_rot, tracked, lost, wall, fps, median, p95, skipped;
-  std::vector<double> camera_to_done;
+  std::vector<double> ate, rpe_trans, rpe_rot, tracked, lost, wall, fps, median, p95;
+  FigureOfEveryRun skipped, camera_to_done;
   BenchmarkAggregate aggregate;
   aggregate.runs = runs.size();
-  bool all_report_skipped = true;
-  bool all_report_camera = true;
   for (const BenchmarkRun& run : runs) {
     if (run.status != RunStatus::kOk) continue;
     ++aggregate.finished;
@@ -234,16 +254,8 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
     fps.push_back(run.fps);
     median.push_back(run.track_median_ms);
     p95.push_back(run.track_p95_ms);
-    if (run.frames_skipped) {
-      skipped.push_back(static_cast<double>(*run.frames_skipped));
-    } else {
-      all_report_skipped = false;
-    }
-    if (run.camera_to_done_s) {
-      camera_to_done.push_back(*run.camera_to_done_s);
-    } else {
-      all_report_camera = false;
-    }
+    skipped.Add(run.frames_skipped);
+    camera_to_done.Add(run.camera_to_done_s);
   }
   aggregate.evaluated = ate.size();
   aggregate.ate_rmse = ComputeErrorStatistics(ate);
@@ -255,12 +267,8 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   aggregate.fps = ComputeErrorStatistics(fps);
   aggregate.track_median_ms = ComputeErrorStatistics(median);
   aggregate.track_p95_ms = ComputeErrorStatistics(p95);
-  if (aggregate.finished > 0 && all_report_skipped) {
-    aggregate.frames_skipped = ComputeErrorStatistics(skipped);
-  }
-  if (aggregate.finished > 0 && all_report_camera) {
-    aggregate.camera_to_done_s = ComputeErrorStatistics(camera_to_done);
-  }
+  aggregate.frames_skipped = skipped.Statistics(aggregate.finished);
+  aggregate.camera_to_done_s = camera_to_done.Statistics(aggregate.finished);
   return aggregate;
 }
 
