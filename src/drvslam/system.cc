@@ -134,11 +134,21 @@ struct System::Impl {
   double map_load_ms = 0.0;
 };
 
+namespace {
+
+// A sequential run keeps every stage on the one calling thread, the extractor's levels too.
+Settings ExtractionSettings(Settings settings, bool sequential) {
+  if (sequential) settings.orb.threads = 1;
+  return settings;
+}
+
+}  // namespace
+
 System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_options,
                    const SystemOptions& options_in)
     : settings(settings_in),
       options(options_in),
-      frame_factory(settings_in),
+      frame_factory(ExtractionSettings(settings_in, options_in.sequential)),
       tracker(map, tracker_options, settings_in.camera.fps),
       local_mapper(map, options_in.mapping, options_in.sequential, &timings) {
   // The one place the process's OpenCV thread pool is set (core/thread_budget.h).

@@ -147,6 +147,32 @@ TEST_P(PhotoTest, RepeatedRunsAreIdentical) {
   }
 }
 
+TEST_P(PhotoTest, OneAndTwoThreadsGiveTheSameFeatures) {
+  OrbExtractorOptions one_thread;
+  one_thread.threads = 1;
+  OrbExtractor single(one_thread);
+  ASSERT_EQ(OrbExtractorOptions{}.threads, 2);  // extractor_ splits its levels
+  cv::Mat mask = cv::Mat::zeros(gray_.size(), CV_8UC1);
+  mask(cv::Rect(50, 40, 180, 220)).setTo(255);
+  // 300: coarse levels fill their shares; 5000: they cannot, and pass the rest down.
+  for (const int target : {300, 1000, 5000}) {
+    for (const cv::Mat& skip : {cv::Mat(), mask}) {
+      const Features a = Extract(single, gray_, target, skip);
+      const Features b = Extract(extractor_, gray_, target, skip);
+      ASSERT_EQ(a.keypoints.size(), b.keypoints.size()) << "target " << target;
+      ASSERT_GT(a.keypoints.size(), 0u);
+      for (size_t i = 0; i < a.keypoints.size(); ++i) {
+        ASSERT_EQ(a.keypoints[i].pt, b.keypoints[i].pt) << "keypoint " << i;
+        ASSERT_EQ(a.keypoints[i].angle, b.keypoints[i].angle);
+        ASSERT_EQ(a.keypoints[i].octave, b.keypoints[i].octave);
+        ASSERT_EQ(a.keypoints[i].response, b.keypoints[i].response);
+        ASSERT_EQ(a.keypoints[i].size, b.keypoints[i].size);
+      }
+      ASSERT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_L1), 0.0) << "target " << target;
+    }
+  }
+}
+
 TEST_P(PhotoTest, ZeroTargetMeansOptionsCount) {
   OrbExtractorOptions options;
   options.n_features = 700;

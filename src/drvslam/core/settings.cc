@@ -61,6 +61,9 @@ const OptionTable<OrbExtractorOptions>& OrbExtractorOptionTable() {
         .Int("iniThFAST", &O::ini_th_fast, Bounds::In(1, 255), "FAST threshold tried first.")
         .Int("minThFAST", &O::min_th_fast, Bounds::AtLeast(1),
              "FAST threshold of cells where the first finds no corner.")
+        .Int("threads", &O::threads, Bounds::In(1, 2),
+             "Threads extracting one image: 2 gives half the pyramid levels to a helper thread "
+             "(same features; --sequential always uses 1).")
         .Rule(
             "minThFAST", [](const O& o) { return o.min_th_fast <= o.ini_th_fast; },
             "must not exceed ORBextractor.iniThFAST");

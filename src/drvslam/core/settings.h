@@ -29,6 +29,9 @@ struct OrbExtractorOptions {
   int n_levels = 8;
   int ini_th_fast = 20;
   int min_th_fast = 7;
+  // Threads that extract one image: 2 splits the pyramid levels between the calling thread and
+  // one helper thread (the same features, bit for bit).
+  int threads = 2;
 
   void Check() const;
 };

@@ -1,5 +1,7 @@
 // The process's thread budget. Each pipeline stage is one OS thread of its own: tracking (the
-// caller's), segmentation (AsyncSegmenter), local mapping, loop closing and dense mapping.
+// caller's), segmentation (AsyncSegmenter), local mapping, loop closing and dense mapping; the
+// tracking thread has one helper at its own priority that takes pyramid levels of the ORB
+// extraction off it when a core is free (ORBextractor.threads, core/side_worker.h).
 // OpenCV's parallel_for_ pool is process-global: cv::setNumThreads changes it for cv::dnn on the
 // segmentation thread and equally for ORB's pyramid, optical flow and imgproc on the tracking
 // thread, and with OpenCV's TBB backend a thread that enters a parallel loop while another

@@ -66,6 +66,44 @@ OrbExtractor::OrbExtractor(const OrbExtractorOptions& options) : options_(option
   pyramid_.resize(levels);
   level_corners_.resize(levels);
   GetBriefPattern();  // build the table now rather than inside the first frame
+  if (options_.threads >= 2 && levels >= 2) helper_ = std::make_unique<SideWorker>();
+}
+
+void OrbExtractor::ForEachLevel(const std::function<void(int, Scratch&)>& work) {
+  // Level 0 first: the largest item is started at once, the small ones fill in.
+  if (!helper_) {
+    for (int l = 0; l < options_.n_levels; ++l) work(l, scratch_[0]);
+    return;
+  }
+  helper_->ForEach(options_.n_levels, [&](int l, int thread) { work(l, scratch_[thread]); });
+}
+
+void OrbExtractor::DetectCorners(const cv::Mat& skip_mask, int level, Scratch& scratch) {
+  std::vector<cv::KeyPoint>& corners = level_corners_[level];
+  corners.clear();
+  if (pyramid_[level].empty()) return;
+  const LevelSkipMask mask(skip_mask, scale_factors_[level]);
+  DetectFastGrid(pyramid_[level], fast_params_, mask, &corners, &scratch.fast);
+}
+
+void OrbExtractor::Describe(int level, int first_row, Scratch& scratch,
+                            std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors) const {
+  const std::vector<cv::KeyPoint>& corners = level_corners_[level];
+  if (corners.empty()) return;
+  const cv::Mat& image = pyramid_[level];
+  // BRIEF compares single pixels; smoothing first makes those tests robust to noise.
+  SmoothGaussian7(image, &scratch.smoothed, &scratch.smoothing_buffer);
+  const float scale = scale_factors_[level];
+  int row = first_row;
+  for (const cv::KeyPoint& corner : corners) {
+    const int x = cvRound(corner.pt.x);
+    const int y = cvRound(corner.pt.y);
+    const float angle = IntensityCentroidAngle(image, x, y);
+    ComputeSteeredBrief(scratch.smoothed, x, y, angle, descriptors->ptr<uint8_t>(row));
+    (*keypoints)[row] = cv::KeyPoint(cv::Point2f(x * scale, y * scale), kPatchSize * scale, angle,
+                                     corner.response, level);
+    ++row;
+  }
 }
 
 std::vector<int> OrbExtractor::LevelShares(int target) const {
@@ -109,44 +147,33 @@ void OrbExtractor::Extract(const cv::Mat& gray, const cv::Mat& skip_mask, int ta
   const int levels = options_.n_levels;
   BuildPyramid(gray);
 
-  // Coarse to fine: a level that cannot fill its share passes the rest down to the finer
-  // levels, which have more corners to offer.
+  // FAST on every level (independent of the shares), then coarse to fine: a level that cannot
+  // fill its share passes the rest down to the finer levels, which have more corners to offer.
+  ForEachLevel([&](int l, Scratch& scratch) { DetectCorners(skip_mask, l, scratch); });
   const std::vector<int> shares = LevelShares(target);
   int carry = 0;
   int total = 0;
+  std::vector<int> first_row(levels, 0);
   for (int l = levels - 1; l >= 0; --l) {
     std::vector<cv::KeyPoint>& corners = level_corners_[l];
-    corners.clear();
     const int want = shares[l] + carry;
-    if (!pyramid_[l].empty() && want > 0) {
-      const LevelSkipMask mask(skip_mask, scale_factors_[l]);
-      DetectFastGrid(pyramid_[l], fast_params_, mask, &corners, &fast_scratch_);
+    if (want > 0 && !pyramid_[l].empty()) {
       DistributeQuadtree(DetectionRegion(pyramid_[l].size(), kBorder), want, &corners);
+    } else {
+      corners.clear();
     }
     carry = want - static_cast<int>(corners.size());
     total += static_cast<int>(corners.size());
   }
-
-  keypoints->clear();
-  keypoints->reserve(total);
-  descriptors->create(total, kDescriptorBytes, CV_8UC1);
-  int row = 0;
-  for (int l = 0; l < levels; ++l) {
-    const std::vector<cv::KeyPoint>& corners = level_corners_[l];
-    if (corners.empty()) continue;
-    const cv::Mat& level = pyramid_[l];
-    // BRIEF compares single pixels; smoothing first makes those tests robust to noise.
-    SmoothGaussian7(level, &smoothed_, &smoothing_buffer_);
-    const float scale = scale_factors_[l];
-    for (const cv::KeyPoint& corner : corners) {
-      const int x = cvRound(corner.pt.x);
-      const int y = cvRound(corner.pt.y);
-      const float angle = IntensityCentroidAngle(level, x, y);
-      ComputeSteeredBrief(smoothed_, x, y, angle, descriptors->ptr<uint8_t>(row++));
-      keypoints->emplace_back(cv::Point2f(x * scale, y * scale), kPatchSize * scale, angle,
-                              corner.response, l);
-    }
+  // Level 0's rows first: the output is ordered by level.
+  for (int l = 1; l < levels; ++l) {
+    first_row[l] = first_row[l - 1] + static_cast<int>(level_corners_[l - 1].size());
   }
+
+  keypoints->assign(total, cv::KeyPoint());
+  descriptors->create(total, kDescriptorBytes, CV_8UC1);
+  ForEachLevel(
+      [&](int l, Scratch& scratch) { Describe(l, first_row[l], scratch, keypoints, descriptors); });
 }
 
 }  // namespace drvslam

@@ -5,18 +5,23 @@
 // Not thread-safe: one extractor per thread; its buffers are reused from frame to frame.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
 #include "drvslam/core/settings.h"
+#include "drvslam/core/side_worker.h"
 #include "drvslam/feature/fast_grid_detector.h"
 
 namespace drvslam {
 
 class OrbExtractor {
  public:
-  // Calls options.Check() (throws drvslam::Error naming the bad key).
+  // Calls options.Check() (throws drvslam::Error naming the bad key). With options.threads 2
+  // the extractor owns one helper thread.
   explicit OrbExtractor(const OrbExtractorOptions& options);
 
   // gray: CV_8UC1. skip_mask: empty or CV_8UC1 of the same size (nonzero = no features there).
@@ -25,7 +30,7 @@ class OrbExtractor {
   // response = FAST score, ordered by level, then row-major within a level.
   // descriptors: N x 32 CV_8UC1, row i for keypoint i. Throws drvslam::Error on a wrong image
   // type, an empty image, a mask of the wrong type or size, or null outputs. The result
-  // depends only on the inputs.
+  // depends only on the inputs (not on options.threads).
   void Extract(const cv::Mat& gray, const cv::Mat& skip_mask, int target_features,
                std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors);
 
@@ -42,7 +47,19 @@ class OrbExtractor {
   std::vector<int> LevelShares(int target) const;
 
  private:
+  // Per-thread buffers, reused frame to frame.
+  struct Scratch {
+    cv::Mat smoothed;
+    std::vector<uint16_t> smoothing_buffer;
+    std::vector<cv::KeyPoint> fast;
+  };
   void BuildPyramid(const cv::Mat& gray);
+  // Calls work(level, scratch) for every level: levels are independent, so with a helper
+  // thread both threads take levels from one list (SideWorker), each with its own scratch.
+  void ForEachLevel(const std::function<void(int, Scratch&)>& work);
+  void DetectCorners(const cv::Mat& skip_mask, int level, Scratch& scratch);
+  void Describe(int level, int first_row, Scratch& scratch, std::vector<cv::KeyPoint>* keypoints,
+                cv::Mat* descriptors) const;
 
   OrbExtractorOptions options_;
   FastGridParams fast_params_;
@@ -52,10 +69,9 @@ class OrbExtractor {
   std::vector<float> inv_level_sigma2_;
   std::vector<cv::Mat> pyramid_;
   // Reused per-frame buffers.
-  cv::Mat smoothed_;
-  std::vector<uint16_t> smoothing_buffer_;
+  std::array<Scratch, 2> scratch_;  // [0] for the calling thread, [1] for the helper
   std::vector<std::vector<cv::KeyPoint>> level_corners_;
-  std::vector<cv::KeyPoint> fast_scratch_;
+  std::unique_ptr<SideWorker> helper_;  // null with one thread
 };
 
 }  // namespace drvslam

@@ -42,7 +42,10 @@ VocabularyIdentity IdentifyVocabulary(const BowVocabulary& vocabulary) {
 }
 
 uint64_t SettingsDigest(const Settings& settings) {
-  const std::string text = FormatSettings(settings);
+  // The extractor's thread count does not change a single feature.
+  Settings features = settings;
+  features.orb.threads = OrbExtractorOptions().threads;
+  const std::string text = FormatSettings(features);
   return Fnv1a64(text.data(), text.size());
 }
 
