@@ -28,6 +28,7 @@ struct BenchmarkArguments {
   int runs = 5;
   std::string out = "benchmark_out";
   bool strict_settings = false;
+  bool viewer_pairs = false;
 };
 
 // The command line that reproduces this benchmark, for the report.
@@ -50,6 +51,7 @@ std::string CommandLine(const BenchmarkArguments& args) {
   add("--runs", std::to_string(args.runs));
   add("--out", args.out);
   if (args.strict_settings) command += " --strict-settings";
+  if (args.viewer_pairs) command += " --viewer-pairs";
   return command;
 }
 
@@ -63,8 +65,14 @@ void PrintRunResult(const BenchmarkEntryResult& entry, const BenchmarkRun& run) 
   } else {
     char ate_text[32] = "n/a";
     if (run.ate_rmse) std::snprintf(ate_text, sizeof(ate_text), "%.2f cm", 100.0 * *run.ate_rmse);
-    std::printf("%s: ATE %s, tracked %.1f%%, %.1f s\n", head.c_str(), ate_text,
-                100.0 * run.tracked_share, run.wall_s);
+    std::string browser;
+    if (run.browser) {
+      browser = run.browser->connected
+                    ? ", browser connected (" + std::to_string(run.browser->messages) + " messages)"
+                    : ", browser did NOT connect: " + run.browser->note;
+    }
+    std::printf("%s: ATE %s, tracked %.1f%%, %.1f s%s\n", head.c_str(), ate_text,
+                100.0 * run.tracked_share, run.wall_s, browser.c_str());
   }
   std::fflush(stdout);
 }
@@ -73,6 +81,7 @@ void RunBenchmarkCommand(const BenchmarkArguments& args) {
   BenchmarkOptions options;
   options.entries =
       args.list.empty() ? EntriesFromShortcut(args.shortcut) : ReadBenchmarkList(args.list);
+  if (args.viewer_pairs) options.entries = WithViewerTwins(options.entries);
   options.runs = args.runs;
   options.out_dir = args.out;
   options.command = CommandLine(args);
@@ -122,9 +131,13 @@ const bool kRegistered = RegisterCommand("benchmark", [](CLI::App& root) {
       "default: the dataset folder's name), dataset (required, with groundtruth.txt), config, "
       "segmenter (yolo|masks|gt|none), model, dynamic (on|off), mode "
       "(threaded|sequential|realtime, default threaded), dense (on|off), loop (on|off), "
-      "max_frames, runs (overrides --runs). Paths are relative to the list file. Run k of an "
+      "max_frames, runs (overrides --runs), viewer (true|false: the live viewer on, with a "
+      "headless "
+      "chromium connected to its page). Paths are relative to the list file. Run k of an "
       "entry writes OUT/<name>/run_<k>/ (CameraTrajectory.txt, stats.json, eval.json, ...). Rows "
-      "segmented with ground-truth masks (gt) are labelled ORACLE masks.");
+      "segmented with ground-truth masks (gt) are labelled ORACLE masks. With viewer entries, "
+      "benchmark.md also has the tracking thread's cost of the viewer (stages observer and "
+      "total), viewer on and off side by side.");
   CLI::Option* list =
       command->add_option("--list", args->list, "JSON list of entries (format below)");
   BenchmarkShortcut& s = args->shortcut;
@@ -160,6 +173,10 @@ const bool kRegistered = RegisterCommand("benchmark", [](CLI::App& root) {
   command->add_flag("--strict-settings", args->strict_settings,
                     "an unknown key in a settings file is an error (checked before the first "
                     "run, and passed to every run as drvslam run --strict-settings)");
+  command->add_flag("--viewer-pairs", args->viewer_pairs,
+                    "after each entry, run it again with the live viewer on and a headless "
+                    "chromium connected to the page (named NAME_viewer), to measure what the "
+                    "viewer costs the tracking thread");
   command->callback([args] {
     if (args->list.empty() && args->shortcut.datasets.empty()) {
       throw Error("benchmark: give --list FILE or at least one --dataset DIR");

@@ -8,6 +8,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/io/trajectory_formats.h"
 #include "drvslam/tools/runner/sequence_runner.h"
+#include "drvslam/tools/viewer/live_viewer.h"
 #include "progress_bar.h"
 
 namespace drvslam::cli {
@@ -201,8 +202,8 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
   command->callback([options, viewer, command] {
     if (command->count("--viewer") > 0) {
       options->viewer_port = ParseViewerPort(*viewer);
-      options->viewer_started = [](const std::string& url) {
-        std::printf("viewer: %s\n", url.c_str());
+      options->viewer_started = [](LiveViewer& viewer) {
+        std::printf("viewer: %s\n", viewer.Url().c_str());
         std::fflush(stdout);
       };
     }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,7 +20,9 @@
 #include "drvslam/tools/runner/benchmark_list.h"
 #include "drvslam/tools/runner/benchmark_report.h"
 #include "drvslam/tools/runner/benchmark_runner.h"
+#include "drvslam/tools/viewer/headless_browser.h"
 #include "synthesized_sequence.h"
+#include "test_support/missing_data.h"
 
 namespace drvslam {
 namespace {
@@ -549,6 +552,233 @@ TEST_F(BenchmarkEndToEndTest, StoppingKeepsTheTablesOfWhatFinished) {
   EXPECT_NE(md.find("| seq | 1 | interrupted |"), std::string::npos) << md;
   std::ifstream json_file(root_ / "stopped" / "benchmark.json");
   EXPECT_EQ(nlohmann::json::parse(json_file)["interrupted"], true);
+}
+
+// An environment variable set (or unset, for nullptr) for one scope.
+class ScopedEnvironment {
+ public:
+  ScopedEnvironment(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value) {
+      setenv(name, value, 1);
+    } else {
+      unsetenv(name);
+    }
+  }
+  ~ScopedEnvironment() {
+    if (old_) {
+      setenv(name_.c_str(), old_->c_str(), 1);
+    } else {
+      unsetenv(name_.c_str());
+    }
+  }
+
+ private:
+  std::string name_;
+  std::optional<std::string> old_;
+};
+
+TEST(BenchmarkViewerListTest, ViewerKeyIsReadAndABadValueNamesTheFileAndTheKey) {
+  const fs::path root = test::FreshTempFolder("drvslam_benchmark_viewer_list");
+  FakeSequence(root / "walking_xyz");
+  WriteText(root / "bench.json", R"({"entries": [
+      {"name": "off", "dataset": "walking_xyz"},
+      {"name": "on", "dataset": "walking_xyz", "viewer": true},
+      {"name": "said_off", "dataset": "walking_xyz", "viewer": false}]})");
+  const std::vector<BenchmarkEntry> entries = ReadBenchmarkList((root / "bench.json").string());
+  ASSERT_EQ(entries.size(), 3u);
+  EXPECT_FALSE(entries[0].viewer);
+  EXPECT_TRUE(entries[1].viewer);
+  EXPECT_FALSE(entries[2].viewer);
+  // A viewer run serves on any free port, as `drvslam run --viewer 0` does.
+  const RunOptions on = ToRunOptions(entries[1], "out/on/run_1");
+  ASSERT_TRUE(on.viewer_port.has_value());
+  EXPECT_EQ(*on.viewer_port, 0);
+  EXPECT_EQ(FormatRunCommand(on),
+            "drvslam run --dataset " + entries[1].dataset + " --out out/on/run_1 --viewer 0");
+  EXPECT_FALSE(ToRunOptions(entries[0], "out/off/run_1").viewer_port.has_value());
+
+  for (const char* bad : {R"("yes")", "1", "null"}) {
+    const fs::path list = root / "bad.json";
+    WriteText(list,
+              std::string(R"({"entries": [{"dataset": "walking_xyz", "viewer": )") + bad + "}]}");
+    const std::string message = ErrorOf([&] { ReadBenchmarkList(list.string()); });
+    EXPECT_NE(message.find(list.string() + ": entry 1"), std::string::npos) << message;
+    EXPECT_NE(message.find("key 'viewer' must be true or false"), std::string::npos) << message;
+  }
+  fs::remove_all(root);
+}
+
+TEST(BenchmarkViewerListTest, ViewerPairsAddAViewerTwinAfterEachEntryWithoutOne) {
+  BenchmarkEntry plain;
+  plain.name = "walking";
+  plain.dataset = "seq/walking";
+  plain.segmenter = "gt";
+  plain.origin = "--dataset seq/walking";
+  BenchmarkEntry watched = plain;
+  watched.name = "watched";
+  watched.viewer = true;
+  const std::vector<BenchmarkEntry> paired = WithViewerTwins({plain, watched});
+  ASSERT_EQ(paired.size(), 3u);
+  EXPECT_EQ(paired[0].name, "walking");
+  EXPECT_FALSE(paired[0].viewer);
+  EXPECT_EQ(paired[1].name, "walking_viewer");
+  EXPECT_TRUE(paired[1].viewer);
+  EXPECT_EQ(paired[1].segmenter, "gt");
+  EXPECT_EQ(paired[1].dataset, "seq/walking");
+  EXPECT_EQ(paired[2].name, "watched");
+  EXPECT_TRUE(paired[2].viewer);
+}
+
+TEST(BenchmarkViewerListTest, AMissingChromiumIsAnErrorNamingWhatIsMissing) {
+  const fs::path root = test::FreshTempFolder("drvslam_benchmark_no_chromium");
+  {
+    const ScopedEnvironment chosen("DRVSLAM_CHROMIUM", (root / "no-such-browser").c_str());
+    const std::string message = ErrorOf([] { FindChromium(); });
+    EXPECT_NE(message.find("DRVSLAM_CHROMIUM = " + (root / "no-such-browser").string() +
+                           " is not an executable file"),
+              std::string::npos)
+        << message;
+  }
+  {
+    const ScopedEnvironment chosen("DRVSLAM_CHROMIUM", nullptr);
+    const ScopedEnvironment path("PATH", root.c_str());  // a folder without any browser
+    const std::string message = ErrorOf([] { FindChromium(); });
+    EXPECT_NE(message.find("chromium is missing"), std::string::npos) << message;
+    EXPECT_NE(message.find("neither `chromium` nor `chromium-browser` is on PATH"),
+              std::string::npos)
+        << message;
+  }
+  fs::remove_all(root);
+}
+
+BenchmarkEntryResult ViewerCostEntry(const std::string& name, bool viewer,
+                                     std::vector<BenchmarkRun> runs) {
+  BenchmarkEntryResult entry;
+  entry.entry.name = name;
+  entry.entry.viewer = viewer;
+  entry.segmenter = "gt";
+  entry.segmenter_used = entry.dynamic_on = entry.oracle = true;
+  entry.runs_requested = static_cast<int>(runs.size());
+  entry.runs = std::move(runs);
+  entry.aggregate = AggregateRuns(entry.runs);
+  return entry;
+}
+
+TEST(BenchmarkReportTest, ViewerEntriesGetTheTrackingCostTableWithTheBrowserConnection) {
+  BenchmarkRun off_1 = FinishedRun(1, 0.012, 1.0);
+  BenchmarkRun off_2 = FinishedRun(2, 0.014, 1.0);
+  BenchmarkRun on_1 = FinishedRun(1, 0.013, 1.0);
+  on_1.observer_median_ms = 0.25;
+  on_1.observer_p95_ms = 0.75;
+  on_1.browser = BrowserConnection{true, 2.5, 1, 420, 3200000, ""};
+  BenchmarkRun on_2 = FinishedRun(2, 0.015, 1.0);
+  on_2.observer_median_ms = 0.35;
+  on_2.observer_p95_ms = 0.95;
+  on_2.browser = BrowserConnection{};
+  on_2.browser->note = "the page did not connect within 30 s (see browser.log)";
+  BenchmarkReport report;
+  report.command = "drvslam benchmark --list b.json --viewer-pairs";
+  report.entries = {ViewerCostEntry("walking", false, {off_1, off_2}),
+                    ViewerCostEntry("walking_viewer", true, {on_1, on_2})};
+  EXPECT_EQ(report.entries[1].aggregate.browser_connected, 1u);
+  ASSERT_TRUE(report.entries[1].aggregate.observer_median_ms.has_value());
+  EXPECT_DOUBLE_EQ(report.entries[1].aggregate.observer_median_ms->median, 0.30);
+  EXPECT_FALSE(report.entries[0].aggregate.observer_median_ms.has_value());
+
+  const std::string md = FormatBenchmarkMarkdown(report);
+  ExpectRectangularTables(md);
+  EXPECT_NE(md.find("## Tracking-thread cost of the live viewer"), std::string::npos) << md;
+  // FinishedRun: track median 20 + run, p95 40 + run; the medians over two runs.
+  EXPECT_NE(md.find("| walking | gt (ORACLE masks) | threaded | 2/2 | off | - | - | - | 21.50 | "
+                    "41.50 | 1.30 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| walking_viewer | gt (ORACLE masks) | threaded | 2/2 | on | **NOT "
+                    "connected** in 1 of 2 runs | 0.300 | 0.850 | 21.50 | 41.50 | 1.40 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- walking_viewer run 1: the page connected 2.5 s after chromium started; "
+                    "420 messages (3.2 MB) sent to it"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- walking_viewer run 2: **the browser did not connect**: the page did not "
+                    "connect within 30 s (see browser.log)"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("browser did not connect: the page did not connect within 30 s"),
+            std::string::npos)
+      << md;  // the run's note in the runs table
+
+  const nlohmann::json json = BenchmarkJson(report);
+  EXPECT_EQ(json["entries"][0]["viewer"], false);
+  EXPECT_EQ(json["entries"][1]["viewer"], true);
+  EXPECT_EQ(json["entries"][0]["runs"][0]["browser"], nullptr);
+  EXPECT_EQ(json["entries"][0]["runs"][0]["observer_median_ms"], nullptr);
+  EXPECT_EQ(json["entries"][1]["runs"][0]["browser"]["connected"], true);
+  EXPECT_EQ(json["entries"][1]["runs"][0]["browser"]["messages"], 420);
+  EXPECT_EQ(json["entries"][1]["runs"][1]["browser"]["connected"], false);
+  EXPECT_DOUBLE_EQ(json["entries"][1]["aggregate"]["observer_p95_ms"]["median"].get<double>(),
+                   0.85);
+
+  // Without viewer entries the report has no such section.
+  report.entries.pop_back();
+  EXPECT_EQ(FormatBenchmarkMarkdown(report).find("Tracking-thread cost"), std::string::npos);
+}
+
+TEST_F(BenchmarkEndToEndTest, AViewerEntryRunsWithAConnectedBrowserBesideItsViewerOffTwin) {
+  std::string chromium;
+  try {
+    chromium = FindChromium();
+  } catch (const Error& e) {
+    DRVSLAM_MISSING_TEST_DATA() << e.what();
+  }
+  WriteText(root_ / "viewer.json", R"({"entries": [
+      {"name": "walking", "dataset": "seq", "segmenter": "gt", "dense": "off",
+       "max_frames": 40}]})");
+  const fs::path out = root_ / "viewer_out";
+  const std::string command = std::string(DRVSLAM_CLI) + " --log-level warn benchmark --list " +
+                              (root_ / "viewer.json").string() + " --viewer-pairs --runs 1 --out " +
+                              out.string() + " > " + (root_ / "viewer_log.txt").string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string log = test::ReadFile(root_ / "viewer_log.txt");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  ASSERT_EQ(WEXITSTATUS(status), 0) << log;
+  EXPECT_NE(log.find("walking_viewer 1/1: ATE "), std::string::npos) << log;
+  EXPECT_NE(log.find(", browser connected ("), std::string::npos) << log;
+
+  std::ifstream json_file(out / "benchmark.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  ASSERT_EQ(json["entries"].size(), 2u);
+  const nlohmann::json& off = json["entries"][0]["runs"][0];
+  const nlohmann::json& on = json["entries"][1]["runs"][0];
+  EXPECT_EQ(json["entries"][1]["name"], "walking_viewer");
+  EXPECT_EQ(off["browser"], nullptr);
+  EXPECT_EQ(off["observer_median_ms"], nullptr);  // no viewer, no observer stage
+  EXPECT_EQ(on["status"], "ok");
+  EXPECT_EQ(on["frames"], 40);
+  EXPECT_EQ(on["browser"]["connected"], true) << on.dump(2);
+  EXPECT_EQ(on["browser"]["connections"], 1);
+  // Every tracked pose reaches the page, in batches: at least a handful of messages.
+  EXPECT_GE(on["browser"]["messages"].get<int>(), 10);
+  EXPECT_GT(on["browser"]["bytes"].get<double>(), 1000.0);
+  EXPECT_GT(on["observer_median_ms"].get<double>(), 0.0);
+  EXPECT_GE(on["observer_p95_ms"].get<double>(), on["observer_median_ms"].get<double>());
+  EXPECT_GT(on["ate_rmse_m"].get<double>(), 0.0);
+  EXPECT_LT(on["ate_rmse_m"].get<double>(), 0.05);
+  EXPECT_TRUE(fs::exists(out / "walking_viewer" / "run_1" / "browser.log"));
+
+  const std::string md = test::ReadFile(out / "benchmark.md");
+  ExpectRectangularTables(md);
+  EXPECT_NE(md.find("| walking | gt (ORACLE masks) | threaded | 1/1 | off | - | - | - | "),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| walking_viewer | gt (ORACLE masks) | threaded | 1/1 | on | connected "
+                    "(1/1 runs) | "),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- walking_viewer run 1: the page connected "), std::string::npos) << md;
+  EXPECT_NE(md.find("--viewer 0`"), std::string::npos) << md;
 }
 
 }  // namespace

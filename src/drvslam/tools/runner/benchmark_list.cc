@@ -14,8 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kEntryKeys[] = {"name", "dataset", "config", "segmenter", "model",     "dynamic",
-                                  "mode", "dense",   "loop",   "runs",      "max_frames"};
+const char* const kEntryKeys[] = {"name", "dataset", "config", "segmenter",  "model", "dynamic",
+                                  "mode", "dense",   "loop",   "max_frames", "runs",  "viewer"};
 
 bool IsNameCharacter(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
@@ -58,6 +58,11 @@ BenchmarkEntry ParseEntry(const nlohmann::json& json, const std::string& origin,
     if (text != strings.end()) {
       if (!value.is_string()) throw Error(origin + ": key '" + key + "' must be a string");
       *text->second = value.get<std::string>();
+    } else if (key == "viewer") {
+      if (!value.is_boolean()) {
+        throw Error(origin + ": key 'viewer' must be true or false (not " + value.dump() + ")");
+      }
+      entry.viewer = value.get<bool>();
     } else if (key == "runs" || key == "max_frames") {
       if (!value.is_number_integer())
         throw Error(origin + ": key '" + key + "' must be an integer");
@@ -181,6 +186,20 @@ std::vector<BenchmarkEntry> EntriesFromShortcut(const BenchmarkShortcut& shortcu
   return entries;
 }
 
+std::vector<BenchmarkEntry> WithViewerTwins(const std::vector<BenchmarkEntry>& entries) {
+  std::vector<BenchmarkEntry> paired;
+  for (const BenchmarkEntry& entry : entries) {
+    paired.push_back(entry);
+    if (entry.viewer) continue;
+    BenchmarkEntry twin = entry;
+    twin.name += "_viewer";
+    twin.viewer = true;
+    twin.origin = entry.origin + " with --viewer-pairs";
+    paired.push_back(std::move(twin));
+  }
+  return paired;
+}
+
 void CheckBenchmarkEntries(const std::vector<BenchmarkEntry>& entries) {
   if (entries.empty()) throw Error("benchmark: nothing to run (give --list FILE or --dataset DIR)");
   std::map<std::string, const BenchmarkEntry*> names;
@@ -207,6 +226,7 @@ RunOptions ToRunOptions(const BenchmarkEntry& entry, const std::string& out_dir)
   options.dynamic.realtime = entry.mode == "realtime";
   options.dense = entry.dense;
   options.loop = entry.loop;
+  if (entry.viewer) options.viewer_port = 0;  // any free port: runs may follow each other quickly
   return options;
 }
 
@@ -226,6 +246,7 @@ std::string FormatRunCommand(const RunOptions& options) {
   add("--dense", options.dense);
   add("--loop", options.loop);
   if (options.strict_settings) command += " --strict-settings";
+  if (options.viewer_port) add("--viewer", std::to_string(*options.viewer_port));
   return command;
 }
 

@@ -23,6 +23,9 @@ struct BenchmarkEntry {
   std::string loop;               // on|off; empty: LoopClosing.enabled
   std::size_t max_frames = 0;     // 0 = all
   std::optional<int> runs;        // unset: the benchmark's --runs
+  // The live viewer (`drvslam run --viewer 0`) with a headless Chromium connected to it for the
+  // whole run, so that the report shows what watching costs the tracking thread.
+  bool viewer = false;
   // Where the entry came from, for error messages: "LIST: entry 2 (name)" or "--dataset DIR".
   std::string origin;
 };
@@ -30,7 +33,8 @@ struct BenchmarkEntry {
 // Reads a JSON list file:
 //   {"entries": [{"name": "walking_gt", "dataset": "seq/walking_xyz", "segmenter": "gt"}, ...]}
 // Entry keys: name, dataset (required), config, segmenter, model, dynamic, mode, dense, loop
-// (strings), max_frames, runs (integers). Relative paths (dataset, config, model) are taken
+// (strings), max_frames, runs (integers), viewer (true|false). Relative paths (dataset, config,
+// model) are taken
 // relative to the list file's folder; a missing name is the dataset folder's name. Throws Error
 // naming the file, the entry and the key for unreadable JSON, an unknown key or a wrong type.
 std::vector<BenchmarkEntry> ReadBenchmarkList(const std::string& path);
@@ -50,6 +54,11 @@ struct BenchmarkShortcut {
 
 // One entry per dataset, named after its folder (made unique with _2, _3, ...).
 std::vector<BenchmarkEntry> EntriesFromShortcut(const BenchmarkShortcut& shortcut);
+
+// `drvslam benchmark --viewer-pairs`: after each entry without the viewer, the same entry with it,
+// named NAME_viewer, so that each off/on pair runs in one benchmark and sits side by side in its
+// tables. Entries that already have the viewer are kept as they are.
+std::vector<BenchmarkEntry> WithViewerTwins(const std::vector<BenchmarkEntry>& entries);
 
 // Throws Error naming the entry's origin and the key when an entry cannot run: no entries, a bad
 // or repeated name, a missing dataset folder, config or model file, no groundtruth.txt, an

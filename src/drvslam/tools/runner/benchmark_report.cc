@@ -100,6 +100,91 @@ std::string SummaryRow(const BenchmarkEntryResult& entry, bool with_skipped) {
   return row + "\n";
 }
 
+bool AnyViewer(const BenchmarkReport& report) {
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    if (entry.entry.viewer) return true;
+  }
+  return false;
+}
+
+std::string Megabytes(std::uint64_t bytes) { return Printf("%.1f MB", bytes / 1e6); }
+
+// Whether the browser connected in the entry's finished runs.
+std::string BrowserCell(const BenchmarkEntryResult& entry) {
+  if (!entry.entry.viewer) return "-";
+  const BenchmarkAggregate& a = entry.aggregate;
+  if (a.finished == 0) return "n/a";
+  if (a.browser_connected == a.finished)
+    return Printf("connected (%zu/%zu runs)", a.finished, a.finished);
+  return Printf("**NOT connected** in %zu of %zu runs", a.finished - a.browser_connected,
+                a.finished);
+}
+
+// "median / p95" columns of a figure only viewer runs have: "-" without the viewer.
+std::string ObserverCells(const BenchmarkEntryResult& entry) {
+  const BenchmarkAggregate& a = entry.aggregate;
+  if (a.finished == 0) return "n/a | n/a";
+  if (!a.observer_median_ms || !a.observer_p95_ms)
+    return entry.entry.viewer ? "n/a | n/a" : "- | -";
+  return Printf("%.3f | %.3f", a.observer_median_ms->median, a.observer_p95_ms->median);
+}
+
+std::string ViewerCostRow(const BenchmarkEntryResult& entry) {
+  const BenchmarkAggregate& a = entry.aggregate;
+  std::string row = "| " + Cell(entry.entry.name) + " | " + Cell(SegmenterLabel(entry)) + " | " +
+                    entry.entry.mode + " | " + RunsCell(entry) + " | " +
+                    (entry.entry.viewer ? "on" : "off") + " | " + BrowserCell(entry) + " | " +
+                    ObserverCells(entry) + " | ";
+  row += a.finished > 0 ? Printf("%.2f | %.2f | ", a.track_median_ms.median, a.track_p95_ms.median)
+                        : "n/a | n/a | ";
+  row += a.evaluated > 0 ? Centimetres(a.ate_rmse.median) : "n/a";
+  return row + " |\n";
+}
+
+// The tracking thread's cost of the live viewer, viewer-on and -off entries in one table, and
+// what each viewer run's browser got.
+std::string ViewerCostSection(const BenchmarkReport& report) {
+  std::string text =
+      "## Tracking-thread cost of the live viewer\n\n"
+      "Entries with the viewer on ran `drvslam run --viewer 0` with a headless Chromium on the "
+      "page for the whole run (connected before the first frame; it renders with SwiftShader on "
+      "this machine's CPUs, as the viewer's own thread does, so both compete with SLAM for "
+      "them). Observer: the tracking thread's time handing each frame to the viewer (stats "
+      "stage `observer`, outside `total`); track: the tracking thread's time per frame (stage "
+      "`total`). Each is the median over runs of each run's median and p95 (ms); \"-\": no "
+      "viewer. Wall time and fps of viewer runs include starting the browser.\n\n"
+      "| entry | segmenter | mode | runs | viewer | browser | observer ms median | observer ms "
+      "p95 | track ms median | track ms p95 | ATE median (cm) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const BenchmarkEntryResult& entry : report.entries) text += ViewerCostRow(entry);
+  text += "\nWhat each viewer run's page got:\n\n";
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    for (const BenchmarkRun& run : entry.runs) {
+      if (!run.browser) continue;
+      const BrowserConnection& b = *run.browser;
+      text += "- " + entry.entry.name + " run " + std::to_string(run.index) + ": ";
+      if (b.connected) {
+        text += Printf(
+            "the page connected %.1f s after chromium started; %zu messages (%s) sent "
+            "to it",
+            b.connect_s, b.messages, Megabytes(b.bytes).c_str());
+      } else {
+        text += "**the browser did not connect**: " + b.note;
+      }
+      text += "\n";
+    }
+  }
+  return text + "\n";
+}
+
+std::string RunNote(const BenchmarkRun& run) {
+  std::string note = run.eval_note;
+  if (run.browser && !run.browser->connected) {
+    note += std::string(note.empty() ? "" : "; ") + "browser did not connect: " + run.browser->note;
+  }
+  return note;
+}
+
 std::string RunRow(const BenchmarkEntryResult& entry, const BenchmarkRun& run, bool with_skipped) {
   const std::string na = "n/a";
   std::string row = "| " + Cell(entry.entry.name) + " | " + std::to_string(run.index) + " | " +
@@ -122,7 +207,7 @@ std::string RunRow(const BenchmarkEntryResult& entry, const BenchmarkRun& run, b
     row += run.frames_skipped ? Printf(" %zu |", *run.frames_skipped) : " n/a |";
     row += run.camera_to_done_s ? Printf(" %.1f |", *run.camera_to_done_s) : " n/a |";
   }
-  return row + " " + Cell(run.eval_note) + " |\n";
+  return row + " " + Cell(RunNote(run)) + " |\n";
 }
 
 nlohmann::json StatisticsJson(const ErrorStatistics& s) {
@@ -140,13 +225,24 @@ nlohmann::json TextOrNull(const std::string& text) {
   return text.empty() ? nlohmann::json(nullptr) : nlohmann::json(text);
 }
 
+nlohmann::json BrowserJson(const std::optional<BrowserConnection>& browser) {
+  if (!browser) return nullptr;
+  return {{"connected", browser->connected},
+          {"connect_s", browser->connect_s},
+          {"connections", browser->connections},
+          {"messages", browser->messages},
+          {"bytes", browser->bytes},
+          {"note", TextOrNull(browser->note)}};
+}
+
 nlohmann::json RunJson(const BenchmarkRun& run) {
   const bool measured = run.status != RunStatus::kFailed;
   nlohmann::json json = {{"run", run.index},
                          {"out_dir", run.out_dir},
                          {"status", StatusName(run.status)},
                          {"error", TextOrNull(run.error)},
-                         {"wall_s", run.wall_s}};
+                         {"wall_s", run.wall_s},
+                         {"browser", BrowserJson(run.browser)}};
   if (!measured) return json;
   json.update(nlohmann::json{{"frames", run.frames},
                              {"tracked", run.tracked},
@@ -162,7 +258,9 @@ nlohmann::json RunJson(const BenchmarkRun& run) {
                              {"track_p95_ms", run.track_p95_ms},
                              {"vocabulary_load_ms", run.vocabulary_load_ms},
                              {"frames_skipped", OrNull(run.frames_skipped)},
-                             {"camera_to_done_s", OrNull(run.camera_to_done_s)}});
+                             {"camera_to_done_s", OrNull(run.camera_to_done_s)},
+                             {"observer_median_ms", OrNull(run.observer_median_ms)},
+                             {"observer_p95_ms", OrNull(run.observer_p95_ms)}});
   return json;
 }
 
@@ -181,6 +279,8 @@ nlohmann::json AggregateJson(const BenchmarkAggregate& a) {
                          {"track_p95_ms", StatisticsJson(a.track_p95_ms)}};
   if (a.frames_skipped) json["frames_skipped"] = StatisticsJson(*a.frames_skipped);
   if (a.camera_to_done_s) json["camera_to_done_s"] = StatisticsJson(*a.camera_to_done_s);
+  if (a.observer_median_ms) json["observer_median_ms"] = StatisticsJson(*a.observer_median_ms);
+  if (a.observer_p95_ms) json["observer_p95_ms"] = StatisticsJson(*a.observer_p95_ms);
   return json;
 }
 
@@ -263,6 +363,8 @@ std::string FormatBenchmarkMarkdown(const BenchmarkReport& report) {
         "perceives on its own.\n\n";
   }
 
+  if (AnyViewer(report)) text += ViewerCostSection(report);
+
   text += "## Commands\n\nRun k of an entry is this command with `--out` ending in `run_k`:\n\n";
   for (const BenchmarkEntryResult& entry : report.entries) {
     text +=
@@ -315,6 +417,7 @@ nlohmann::json BenchmarkJson(const BenchmarkReport& report) {
                        {"dense", e.dense},
                        {"loop", e.loop},
                        {"max_frames", e.max_frames},
+                       {"viewer", e.viewer},
                        {"runs_requested", result.runs_requested},
                        {"run_command", result.run_command},
                        {"aggregate", AggregateJson(result.aggregate)},

@@ -19,6 +19,8 @@
 #include "drvslam/settings_registry.h"
 #include "drvslam/tools/runner/benchmark_report.h"
 #include "drvslam/tools/runner/dynamic_run_setup.h"
+#include "drvslam/tools/viewer/headless_browser.h"
+#include "drvslam/tools/viewer/live_viewer.h"
 
 namespace drvslam {
 namespace {
@@ -29,6 +31,7 @@ struct PreparedEntry {
   BenchmarkEntryResult result;
   Trajectory groundtruth;
   bool strict_settings = false;
+  std::string chromium;  // viewer entries: the browser to connect
 };
 
 // The segmenter the entry's runs will use, through the same resolution RunSequence applies
@@ -76,6 +79,7 @@ std::vector<PreparedEntry> Prepare(const BenchmarkOptions& options) {
     try {
       ResolveSegmenter(entry, options.strict_settings, &item.result);
       item.groundtruth = ReadTumTrajectory((fs::path(entry.dataset) / "groundtruth.txt").string());
+      if (entry.viewer) item.chromium = FindChromium();
     } catch (const std::exception& e) {
       // The segmenter's own library (OpenCV DNN) may throw its own exceptions.
       throw Error(entry.origin + ": " + e.what());
@@ -150,6 +154,74 @@ void Evaluate(const Trajectory& groundtruth, const std::string& trajectory_path,
   if (!out) throw Error(eval_path.string() + ": cannot write");
 }
 
+// Waits until the browser's page has opened its WebSocket to `viewer`, the browser ended, the
+// benchmark is stopped or kBrowserConnectTimeoutS passed; fills connect_s, or note.
+void WaitForBrowser(const LiveViewer& viewer, HeadlessBrowser& browser,
+                    const std::atomic<bool>* stop, BrowserConnection* connection) {
+  const auto started = std::chrono::steady_clock::now();
+  const auto elapsed_s = [&started] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
+  while (viewer.Traffic().connections == 0) {
+    if (const std::optional<int> status = browser.ExitedWith()) {
+      connection->note = "chromium exited with status " + std::to_string(*status) +
+                         " before its page connected (see browser.log)";
+      return;
+    }
+    if (stop && stop->load()) {
+      connection->note = "stopped before the page connected";
+      return;
+    }
+    if (elapsed_s() > kBrowserConnectTimeoutS) {
+      connection->note = "the page did not connect within " +
+                         std::to_string(static_cast<int>(kBrowserConnectTimeoutS)) +
+                         " s (see browser.log)";
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  connection->connect_s = elapsed_s();
+}
+
+// Hooks a viewer entry's run to a headless browser: started on the viewer's page before the
+// first frame, its connection and traffic recorded when the viewer finishes.
+class BrowserSession {
+ public:
+  BrowserSession(const PreparedEntry& prepared, const fs::path& run_dir,
+                 const std::atomic<bool>* stop)
+      : chromium_(prepared.chromium), log_((run_dir / "browser.log").string()), stop_(stop) {}
+
+  void Attach(RunOptions* options) {
+    options->viewer_started = [this](LiveViewer& viewer) {
+      browser_ = std::make_unique<HeadlessBrowser>(chromium_, viewer.Url(), log_);
+      WaitForBrowser(viewer, *browser_, stop_, &connection_);
+    };
+    options->viewer_finished = [this](const LiveViewer& viewer) {
+      const WebTraffic traffic = viewer.Traffic();
+      connection_.connections = traffic.connections;
+      connection_.messages = traffic.messages;
+      connection_.bytes = traffic.bytes;
+    };
+  }
+
+  // Ends the browser; what the page got.
+  BrowserConnection Close() {
+    if (browser_) browser_->Close();
+    connection_.connected = connection_.connections > 0 && connection_.messages > 0;
+    if (!connection_.connected && connection_.note.empty()) {
+      connection_.note = browser_ ? "the page was sent nothing" : "the viewer did not start";
+    }
+    return connection_;
+  }
+
+ private:
+  std::string chromium_;
+  std::string log_;
+  const std::atomic<bool>* stop_;
+  std::unique_ptr<HeadlessBrowser> browser_;
+  BrowserConnection connection_;
+};
+
 BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path& run_dir,
                         const BenchmarkProgress& progress, const std::atomic<bool>* stop) {
   BenchmarkRun run;
@@ -161,6 +233,8 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
   const auto seconds_since_start = [&started] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   };
+  std::optional<BrowserSession> browser;
+  if (prepared.result.entry.viewer) browser.emplace(prepared, run_dir, stop).Attach(&options);
   RunSummary summary;
   try {
     summary = RunSequence(options, progress.frame_done, stop);
@@ -168,9 +242,11 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
     run.status = RunStatus::kFailed;
     run.error = e.what();
     run.wall_s = seconds_since_start();
+    if (browser) run.browser = browser->Close();
     return run;
   }
   run.wall_s = seconds_since_start();
+  if (browser) run.browser = browser->Close();
   const SystemStats& stats = summary.stats;
   run.frames = stats.frames;
   run.tracked = stats.tracked;
@@ -184,6 +260,11 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
   if (total != stats.stages.end()) {
     run.track_median_ms = total->second.median_ms;
     run.track_p95_ms = total->second.p95_ms;
+  }
+  const auto observer = stats.stages.find("observer");
+  if (observer != stats.stages.end()) {
+    run.observer_median_ms = observer->second.median_ms;
+    run.observer_p95_ms = observer->second.p95_ms;
   }
   const RealtimeFigures realtime = ReadRealtimeFigures(run_dir / "stats.json");
   run.frames_skipped = realtime.frames_skipped;
@@ -239,7 +320,7 @@ std::size_t BenchmarkReport::FailedRuns() const {
 
 BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   std::vector<double> ate, rpe_trans, rpe_rot, tracked, lost, wall, fps, median, p95;
-  FigureOfEveryRun skipped, camera_to_done;
+  FigureOfEveryRun skipped, camera_to_done, observer_median, observer_p95;
   BenchmarkAggregate aggregate;
   aggregate.runs = runs.size();
   for (const BenchmarkRun& run : runs) {
@@ -256,6 +337,9 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
     p95.push_back(run.track_p95_ms);
     skipped.Add(run.frames_skipped);
     camera_to_done.Add(run.camera_to_done_s);
+    observer_median.Add(run.observer_median_ms);
+    observer_p95.Add(run.observer_p95_ms);
+    aggregate.browser_connected += run.browser && run.browser->connected;
   }
   aggregate.evaluated = ate.size();
   aggregate.ate_rmse = ComputeErrorStatistics(ate);
@@ -269,6 +353,8 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   aggregate.track_p95_ms = ComputeErrorStatistics(p95);
   aggregate.frames_skipped = skipped.Statistics(aggregate.finished);
   aggregate.camera_to_done_s = camera_to_done.Statistics(aggregate.finished);
+  aggregate.observer_median_ms = observer_median.Statistics(aggregate.finished);
+  aggregate.observer_p95_ms = observer_p95.Statistics(aggregate.finished);
   return aggregate;
 }
 

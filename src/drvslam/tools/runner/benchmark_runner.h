@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -28,6 +29,16 @@ struct BenchmarkOptions {
 };
 
 enum class RunStatus { kOk, kFailed, kInterrupted };
+
+// A viewer entry's run: the headless browser on the live viewer's page.
+struct BrowserConnection {
+  bool connected = false;       // the page opened its WebSocket and was sent messages
+  double connect_s = 0.0;       // from starting the browser until the page connected
+  std::size_t connections = 0;  // WebSocket connections the viewer accepted
+  std::size_t messages = 0;     // messages the viewer sent the page
+  std::uint64_t bytes = 0;
+  std::string note;  // why it did not connect
+};
 
 struct BenchmarkRun {
   int index = 0;  // 1-based: run_<index>
@@ -52,6 +63,11 @@ struct BenchmarkRun {
   // Realtime runs: from the camera's first frame until every thread drained (wall_s without
   // start-up, decoding ahead and writing the outputs).
   std::optional<double> camera_to_done_s;
+  // Stats stage "observer": the tracking thread's time handing each frame to the live viewer
+  // (outside "total"); unset when the run had no viewer.
+  std::optional<double> observer_median_ms;
+  std::optional<double> observer_p95_ms;
+  std::optional<BrowserConnection> browser;  // viewer entries
 };
 
 // Statistics over the runs of one entry (numpy's median and population std).
@@ -69,8 +85,11 @@ struct BenchmarkAggregate {
   ErrorStatistics fps;
   ErrorStatistics track_median_ms;
   ErrorStatistics track_p95_ms;
-  std::optional<ErrorStatistics> frames_skipped;    // when every finished run reports it
-  std::optional<ErrorStatistics> camera_to_done_s;  // likewise
+  std::optional<ErrorStatistics> frames_skipped;      // when every finished run reports it
+  std::optional<ErrorStatistics> camera_to_done_s;    // likewise
+  std::optional<ErrorStatistics> observer_median_ms;  // likewise (viewer entries)
+  std::optional<ErrorStatistics> observer_p95_ms;
+  std::size_t browser_connected = 0;  // finished runs whose browser connected
 };
 
 struct BenchmarkEntryResult {
@@ -112,14 +131,20 @@ struct BenchmarkProgress {
   std::function<void(const BenchmarkEntryResult&, const BenchmarkRun&)> run_finished;
 };
 
+inline constexpr double kBrowserConnectTimeoutS = 30.0;
+
 BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs);
 
 MachineInfo DescribeMachine();
 
 // Checks every entry and resolves its settings and segmenter before the first run (throws Error
-// naming the entry then). A run that throws is recorded as failed, with its message, and the
-// benchmark goes on; `stop` (may be null) ends it after the current frame, keeping what finished.
-// Throws Error when the output folder or the tables cannot be written.
+// naming the entry then; a viewer entry also needs chromium, FindChromium). A viewer entry's
+// run starts the live viewer on a free port and a headless Chromium on its page (its output in
+// RUN_DIR/browser.log), waits up to kBrowserConnectTimeoutS for the page to connect before the
+// first frame, and closes the browser when the run ends; a page that did not connect is
+// recorded (BrowserConnection), not an error. A run that throws is recorded as failed, with its
+// message, and the benchmark goes on; `stop` (may be null) ends it after the current frame, keeping
+// what finished. Throws Error when the output folder or the tables cannot be written.
 BenchmarkReport RunBenchmark(const BenchmarkOptions& options,
                              const BenchmarkProgress& progress = {},
                              const std::atomic<bool>* stop = nullptr);

@@ -83,10 +83,12 @@ using Clock = std::chrono::steady_clock;
 struct ViewerStop {
   System& system;
   const std::shared_ptr<LiveViewer>& viewer;
+  const std::function<void(const LiveViewer&)>& finished;
   ~ViewerStop() {
     if (!viewer) return;
     viewer->Finish();
     system.SetFrameObserver(nullptr);
+    if (finished) finished(*viewer);
   }
 };
 
@@ -211,7 +213,7 @@ RunSummary RunSequence(const RunOptions& options,
   System system(setup.settings, setup.tracker, setup.system);
   std::shared_ptr<LiveViewer> viewer;
   // However the run ends, the viewer stops (and lets go of the system) before the system goes.
-  const ViewerStop viewer_stop{system, viewer};
+  const ViewerStop viewer_stop{system, viewer, options.viewer_finished};
   if (options.viewer_port) {
     LiveViewerOptions viewer_options;
     viewer_options.port = *options.viewer_port;
@@ -220,7 +222,7 @@ RunSummary RunSequence(const RunOptions& options,
     if (fs::is_regular_file(truth)) viewer_options.ground_truth = truth.string();
     viewer = std::make_shared<LiveViewer>(system, viewer_options);
     system.SetFrameObserver(viewer);
-    if (options.viewer_started) options.viewer_started(viewer->Url());
+    if (options.viewer_started) options.viewer_started(*viewer);
   }
   RunSummary summary;
   summary.dataset = fs::absolute(options.dataset).lexically_normal().string();

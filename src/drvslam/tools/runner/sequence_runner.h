@@ -22,6 +22,8 @@
 
 namespace drvslam {
 
+class LiveViewer;  // tools/viewer/live_viewer.h
+
 struct RunOptions {
   std::string dataset;  // TUM-layout folder
   std::string config;   // settings file; empty: DATASET/settings.yaml if present, else TUM fr3
@@ -44,9 +46,13 @@ struct RunOptions {
   // --frame-log FILE: one line per frame (tools/runner/frame_log.h); empty: none.
   std::string frame_log;
   // --viewer [PORT]: serve the live viewer page on 127.0.0.1:PORT during the run (0: any free
-  // port); nullopt: no viewer. `viewer_started` (may be empty) gets its URL once it listens.
+  // port); nullopt: no viewer. `viewer_started` (may be empty) gets the viewer once it listens
+  // (LiveViewer::Url), before the first frame; `viewer_finished` (may be empty) gets it after
+  // LiveViewer::Finish, however the run ends (what it sent: LiveViewer::Traffic); it must not
+  // throw.
   std::optional<int> viewer_port;
-  std::function<void(const std::string&)> viewer_started;
+  std::function<void(LiveViewer&)> viewer_started;
+  std::function<void(const LiveViewer&)> viewer_finished;
   // --trajectory-format tum|kitti|euroc: the format of CameraTrajectory and KeyFrameTrajectory
   // (io/trajectory_formats.h; kitti adds *_times.txt, euroc writes .csv).
   std::string trajectory_format = "tum";

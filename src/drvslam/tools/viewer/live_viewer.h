@@ -54,6 +54,8 @@ class LiveViewer : public FrameObserver {
 
   int Port() const { return server_.Port(); }
   std::string Url() const;
+  // What the page(s) have been sent so far; final once Finish has returned.
+  WebTraffic Traffic() const { return server_.Traffic(); }
 
   void OnFrame(const FrameObservation& observation) override;
 

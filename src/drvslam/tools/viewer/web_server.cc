@@ -50,10 +50,14 @@ struct WebServer::Impl {
   std::atomic<bool> all_sent{true};
   std::atomic<std::size_t> client_count{0};
   std::atomic<std::size_t> throttled{0};
+  std::atomic<std::size_t> connections{0};
+  std::atomic<std::size_t> messages{0};
+  std::atomic<std::uint64_t> bytes{0};
   std::atomic<bool> stopped{false};
 
   void OnHttp(Handle handle);
-  void Pump();  // io thread
+  void Pump();                                                                // io thread
+  void Send(Server::connection_ptr& connection, const std::string& message);  // io thread
   void SchedulePump();
   void Tick();  // io thread: pumps every kPumpIntervalMs
 };
@@ -73,6 +77,13 @@ void WebServer::Impl::OnHttp(Handle handle) {
   connection->set_body(std::move(response->body));
 }
 
+void WebServer::Impl::Send(Server::connection_ptr& connection, const std::string& message) {
+  const std::error_code error = connection->send(message, websocketpp::frame::opcode::text);
+  if (error) return;
+  ++messages;
+  bytes += message.size();
+}
+
 void WebServer::Impl::Pump() {
   pump_posted = false;
   std::lock_guard<std::mutex> lock(mutex);
@@ -83,7 +94,7 @@ void WebServer::Impl::Pump() {
     if (error || connection->get_state() != websocketpp::session::state::open) continue;
     const auto room = [&] { return connection->get_buffered_amount() < kMaxBacklogBytes; };
     while (client.next_log < log.size() && room()) {
-      connection->send(*log[client.next_log], websocketpp::frame::opcode::text);
+      Send(connection, *log[client.next_log]);
       ++client.next_log;
     }
     for (const auto& [key, entry] : latest) {
@@ -94,7 +105,7 @@ void WebServer::Impl::Pump() {
         everything_sent = false;
         continue;
       }
-      connection->send(*entry.second, websocketpp::frame::opcode::text);
+      Send(connection, *entry.second);
       sent = entry.first;
     }
     if (client.next_log < log.size() || connection->get_buffered_amount() > 0) {
@@ -138,6 +149,7 @@ WebServer::WebServer(int port, HttpHandler handler) : impl_(std::make_unique<Imp
       s.clients[handle] = Impl::Client{};
       s.client_count = s.clients.size();
     }
+    ++s.connections;
     s.Pump();
   });
   s.server.set_close_handler([&s](Handle handle) {
@@ -197,6 +209,14 @@ void WebServer::Flush(int timeout_ms) {
 }
 
 std::size_t WebServer::Clients() const { return impl_->client_count; }
+
+WebTraffic WebServer::Traffic() const {
+  WebTraffic traffic;
+  traffic.connections = impl_->connections;
+  traffic.messages = impl_->messages;
+  traffic.bytes = impl_->bytes;
+  return traffic;
+}
 
 std::size_t WebServer::Throttled() const { return impl_->throttled; }
 

@@ -18,6 +18,13 @@
 
 namespace drvslam {
 
+// What the server has handed to WebSocket clients since it started (all clients together).
+struct WebTraffic {
+  std::size_t connections = 0;  // WebSocket connections opened
+  std::size_t messages = 0;     // messages handed to a client's connection
+  std::uint64_t bytes = 0;      // their payload bytes
+};
+
 struct HttpResponse {
   int status = 200;
   std::string content_type = "text/plain; charset=utf-8";
@@ -47,6 +54,7 @@ class WebServer {
   // latest messages (used before stopping, so the last update reaches the page).
   void Flush(int timeout_ms);
   std::size_t Clients() const;
+  WebTraffic Traffic() const;
   // Messages not sent to some client because it was over kMaxBacklogBytes (a pump skipped it).
   std::size_t Throttled() const;
   void Stop();
