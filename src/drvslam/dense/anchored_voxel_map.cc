@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "drvslam/core/error.h"
 #include "drvslam/dense/dense_frame.h"
 #include "drvslam/dense/voxel_grid.h"
 
@@ -12,7 +14,8 @@ namespace {
 // One node of std::unordered_map: key, value, next pointer, cached hash (libstdc++), plus the
 // bucket pointer.
 constexpr std::size_t kHashNodeBytes = sizeof(int64_t) + sizeof(uint32_t) + 2 * sizeof(void*) + 8;
-constexpr float kMinWeightDepth = 0.1f;
+// Nearer than this, a voxel is not voted on (behind or at the camera).
+constexpr float kMinCarveDepth = 0.1f;
 
 struct Rigid {
   Eigen::Matrix3f R;
@@ -27,13 +30,6 @@ std::vector<Rigid> Rigids(const std::vector<SE3>& poses, bool inverse) {
   out.reserve(poses.size());
   for (const SE3& T : poses) out.push_back(ToRigid(inverse ? T.Inverse() : T));
   return out;
-}
-
-// Structured-light depth noise grows with z^2, so a view's variance with z^4.
-float ViewWeight(const Eigen::Vector3f& local) {
-  const float z = std::max(local.z(), kMinWeightDepth);
-  const float z2 = z * z;
-  return 1.0f / (z2 * z2);
 }
 
 uint8_t Blend(uint8_t a, uint8_t b, float share) {
@@ -77,13 +73,18 @@ void AnchoredVoxelMap::Refine(Stored* stored, const Eigen::Vector3f& position_in
   stored->weight = total;
 }
 
-std::size_t AnchoredVoxelMap::Insert(const DenseCloud& local, int anchor,
-                                     const std::vector<SE3>& T_wa) {
+std::size_t AnchoredVoxelMap::Insert(const DenseCloud& local, const std::vector<float>& weights,
+                                     int anchor, const std::vector<SE3>& T_wa) {
+  if (weights.size() != local.size()) {
+    throw Error("dense voxel map: " + std::to_string(weights.size()) + " weights for " +
+                std::to_string(local.size()) + " points");
+  }
   const Rigid to_world = ToRigid(T_wa[anchor]);
   std::vector<Rigid> from_world;  // built when a taken voxel is met
   const int max = evidence_.evidence_max;
   std::size_t added = 0;
-  for (const DensePoint& point : local) {
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    const DensePoint& point = local[i];
     const Eigen::Vector3f world = to_world * point.position;
     const std::optional<int64_t> key = VoxelKey(world, leaf_);
     if (!key) continue;
@@ -92,7 +93,7 @@ std::size_t AnchoredVoxelMap::Insert(const DenseCloud& local, int anchor,
       Stored stored;
       stored.point = point;
       stored.anchor = anchor;
-      stored.weight = ViewWeight(point.position);
+      stored.weight = weights[i];
       stored.views = 1;
       stored.evidence = 1;
       points_.push_back(stored);
@@ -101,7 +102,7 @@ std::size_t AnchoredVoxelMap::Insert(const DenseCloud& local, int anchor,
     }
     if (from_world.empty()) from_world = Rigids(T_wa, /*inverse=*/true);
     Stored& stored = points_[it->second];
-    Refine(&stored, from_world[stored.anchor] * world, point, ViewWeight(point.position));
+    Refine(&stored, from_world[stored.anchor] * world, point, weights[i]);
     if (stored.views < UINT16_MAX) ++stored.views;
     stored.evidence = static_cast<int8_t>(std::min<int>(stored.evidence + 1, max));
     stored.span = SpanTo(stored, anchor);
@@ -122,7 +123,7 @@ std::size_t AnchoredVoxelMap::Carve(const CarvingView& view, const std::vector<S
   for (Stored& stored : points_) {
     if (stored.evidence <= min) continue;
     const Eigen::Vector3f c = to_camera[stored.anchor] * stored.point.position;
-    if (c.z() <= kMinWeightDepth) continue;
+    if (c.z() <= kMinCarveDepth) continue;
     const Eigen::Vector2f pixel = ProjectToImage(camera, c);
     const int x = static_cast<int>(std::lround(pixel.x()));
     const int y = static_cast<int>(std::lround(pixel.y()));

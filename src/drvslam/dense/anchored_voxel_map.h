@@ -5,7 +5,8 @@
 // the anchors' current poses, and Rekey merges points that the corrected poses put into one
 // voxel.
 // A voxel's point is evidence, not a first arrival: every view refines it (a mean weighted by
-// the view's depth noise, so closer views count more), every view adds to its evidence and
+// the view's weight: its pixels' inverse depth variance times how frontally they see the
+// surface, so closer, more frontal views count more), every view adds to its evidence and
 // every later view that sees through it takes from it (Carve). Only voxels seen by min_views
 // views, spread over at least min_span seconds, with positive evidence are exported, so one bad
 // frame - or a person the detector misses for a moment - cannot plant a point, and an object
@@ -55,10 +56,12 @@ class AnchoredVoxelMap {
   std::size_t Bytes() const;
 
   // One view from `anchor`: `local` holds points in the anchor's camera frame, at most one per
-  // world voxel (through T_wa[anchor]). A free voxel takes its point; a taken one refines its
-  // point towards the new one (weighted by 1 / z^4, the inverse depth variance of the view) and
-  // gains evidence. Returns how many voxels were new.
-  std::size_t Insert(const DenseCloud& local, int anchor, const std::vector<SE3>& T_wa);
+  // world voxel (through T_wa[anchor]), `weights` the view's weight of each (positive; e.g. the
+  // summed cos / z^4 of the pixels it averages). A free voxel takes its point; a taken one
+  // refines its point towards the new one by the weights' share and gains evidence. Returns
+  // how many voxels were new.
+  std::size_t Insert(const DenseCloud& local, const std::vector<float>& weights, int anchor,
+                     const std::vector<SE3>& T_wa);
 
   // Takes one evidence from every voxel `view` sees through. Returns how many.
   std::size_t Carve(const CarvingView& view, const std::vector<SE3>& T_wa);

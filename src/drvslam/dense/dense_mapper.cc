@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "drvslam/core/thread_budget.h"
+#include "drvslam/dense/dense_surface.h"
 #include "drvslam/dense/voxel_grid.h"
 
 namespace drvslam {
@@ -179,15 +180,25 @@ void DenseMapper::Reset() {
 namespace {
 
 // Points of the anchor's camera frame, one per voxel of the world grid (through T_wa): the
-// map's own voxels, so a view counts once per voxel.
-DenseCloud DownsampleOnWorldGrid(DenseCloud local, const SE3& T_wa, double leaf) {
+// map's own voxels, so a view counts once per voxel, with the summed weight of its pixels.
+SurfaceSamples DownsampleOnWorldGrid(SurfaceSamples local, const SE3& T_wa, double leaf) {
   const Eigen::Matrix3f R = T_wa.Rotation().cast<float>();
   const Eigen::Vector3f t = T_wa.Translation().cast<float>();
-  for (DensePoint& p : local) p.position = R * p.position + t;
-  DenseCloud cloud = VoxelDownsample(local, leaf);
+  for (DensePoint& p : local.points) p.position = R * p.position + t;
+  SurfaceSamples voxels;
+  voxels.points = WeightedVoxelDownsample(local.points, local.weights, leaf, &voxels.weights);
   const Eigen::Matrix3f Rt = R.transpose();
-  for (DensePoint& p : cloud) p.position = Rt * (p.position - t);
-  return cloud;
+  for (DensePoint& p : voxels.points) p.position = Rt * (p.position - t);
+  return voxels;
+}
+
+// Key-object points weighted by their depth noise alone (enhancement frames see them from
+// about the keyframe's place; their normals would cost more than they change).
+void AppendWithDepthWeights(const DenseCloud& points, SurfaceSamples* samples) {
+  for (const DensePoint& p : points) {
+    samples->points.push_back(p);
+    samples->weights.push_back(DepthNoiseWeight(p.position.z()));
+  }
 }
 
 // A neighbouring frame's verdict on the keyframe's points: its left-out objects and depth.
@@ -200,12 +211,15 @@ struct NeighbourMasks {
 
 // Drops the points (keyframe frame) that a neighbour sees, at the point's depth within the
 // carving margin, on a left-out object.
-DenseCloud DropPointsSeenMoving(const DenseCloud& points, const std::vector<NeighbourMasks>& views,
-                                const CameraOptions& camera, const DenseMapOptions& options) {
-  if (views.empty()) return points;
-  DenseCloud kept;
-  kept.reserve(points.size());
-  for (const DensePoint& p : points) {
+SurfaceSamples DropPointsSeenMoving(SurfaceSamples samples,
+                                    const std::vector<NeighbourMasks>& views,
+                                    const CameraOptions& camera, const DenseMapOptions& options) {
+  if (views.empty()) return samples;
+  SurfaceSamples kept;
+  kept.points.reserve(samples.points.size());
+  kept.weights.reserve(samples.points.size());
+  for (std::size_t i = 0; i < samples.points.size(); ++i) {
+    const DensePoint& p = samples.points[i];
     bool moving = false;
     for (const NeighbourMasks& view : views) {
       const Eigen::Vector3f c = view.R_nk * p.position + view.t_nk;
@@ -223,7 +237,9 @@ DenseCloud DropPointsSeenMoving(const DenseCloud& points, const std::vector<Neig
         break;
       }
     }
-    if (!moving) kept.push_back(p);
+    if (moving) continue;
+    kept.points.push_back(p);
+    kept.weights.push_back(samples.weights[i]);
   }
   return kept;
 }
@@ -238,7 +254,9 @@ void DenseMapper::Integrate(KeyFrameJob job) {
   const SE3 T_wa = job.keyframe ? CurrentKeyFramePose(*job.keyframe) : frame.T_wc;
 
   // Key objects of the keyframe and its neighbours, in the keyframe's camera frame.
-  DenseCloud objects = BackProject(frame, roles, PixelRole::kKeyObject, rays_, options_);
+  SurfaceSamples objects;
+  AppendWithDepthWeights(BackProject(frame, roles, PixelRole::kKeyObject, rays_, options_),
+                         &objects);
   std::size_t used = 0;
   const SE3 T_kw = frame.T_wc.Inverse();
   std::vector<PixelRoles> all_neighbour_roles;
@@ -259,15 +277,18 @@ void DenseMapper::Integrate(KeyFrameJob job) {
     const SE3 T_kn = T_kw * neighbour.T_wc;
     const Eigen::Matrix3f R = T_kn.Rotation().cast<float>();
     const Eigen::Vector3f t = T_kn.Translation().cast<float>();
-    for (DensePoint& p : points) p.position = R * p.position + t;
-    objects.insert(objects.end(), points.begin(), points.end());
+    const std::size_t first = objects.points.size();
+    AppendWithDepthWeights(points, &objects);  // the neighbour's own depth noise
+    for (std::size_t i = first; i < objects.points.size(); ++i) {
+      objects.points[i].position = R * objects.points[i].position + t;
+    }
   }
-  const DenseCloud fine =
+  const SurfaceSamples fine =
       DownsampleOnWorldGrid(std::move(objects), T_wa, options_.object_leaf_size);
-  const DenseCloud coarse = DropPointsSeenMoving(
-      DownsampleOnWorldGrid(BackProject(frame, roles, PixelRole::kBackground, rays_, options_),
-                            T_wa, options_.leaf_size),
-      vetoes, camera_, options_);
+  const SurfaceSamples coarse =
+      DropPointsSeenMoving(DownsampleOnWorldGrid(BackProjectSurfaces(frame, roles, rays_, options_),
+                                                 T_wa, options_.leaf_size),
+                           vetoes, camera_, options_);
 
   std::lock_guard<std::mutex> lock(mutex_);
   ReleaseCulledLocked();
@@ -285,8 +306,8 @@ void DenseMapper::Integrate(KeyFrameJob job) {
   const int anchor = static_cast<int>(anchors_.size());
   anchors_.push_back({job.keyframe, SE3::Identity(), frame.T_wc, frame.timestamp});
   poses.push_back(T_wa);
-  coarse_.Insert(coarse, anchor, poses);
-  fine_.Insert(fine, anchor, poses);
+  coarse_.Insert(coarse.points, coarse.weights, anchor, poses);
+  fine_.Insert(fine.points, fine.weights, anchor, poses);
   ++stats_.keyframes;
   stats_.enhancement_frames += used;
   stats_.full_resolution_points += mapped_pixels;

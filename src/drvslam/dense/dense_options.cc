@@ -36,6 +36,10 @@ const OptionTable<DenseMapOptions>& DenseMapOptionTable() {
               "Growth takes pixels within this of the object's median depth.")
         .Real("flyingPixelStep", &D::flying_pixel_step, Bounds::In(0, 1).Note("0 keeps them"),
               "A depth step to a 4-neighbour above this share of the depth drops the pixel.")
+        .Int("depthSmoothing", &D::depth_smoothing, Bounds::In(0, 10).Note("pixels"),
+             "Background depth is averaged over this radius along its own surface before "
+             "back-projection, and normals (which weight each view by its cosine) are taken "
+             "over it (0 = raw depth).")
         .Int("minViews", &D::min_views, Bounds::In(1, 1000),
              "Keyframes that must see a point in a voxel before it is exported.")
         .Real("minViewSpan", &D::min_view_span, Bounds::In(0, 60).Note("seconds"),

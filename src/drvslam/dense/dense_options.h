@@ -41,6 +41,15 @@ struct DenseMapOptions {
   // of its depth lies on a depth edge, where the sensor mixes both sides; it is left out.
   // 0 keeps them.
   double flying_pixel_step = 0.03;
+  // Background depth is averaged over the (2 depthSmoothing + 1)^2 pixels around each pixel
+  // that lie on its surface (a step below flying_pixel_step) before it is back-projected, and
+  // surface normals are taken over that many pixels: at a few metres a Kinect's depth noise
+  // (centimetres) would otherwise spread a wall over the voxel layers in front of and behind
+  // it, and the OctoMap would mark the layer in front occupied. 0 = raw depth, normals over
+  // 1 pixel. Each point then counts as a view of its voxel with weight cos / z^4: the cosine
+  // between its ray and the surface normal (frontal views place a surface best) times the
+  // inverse depth variance.
+  int depth_smoothing = 2;
   // Evidence (coarse map): a voxel is exported once min_views keyframes saw a point in it.
   // Each view adds one to its evidence and each later keyframe whose depth lies clearly behind
   // it (seen through) takes one away; evidence is clamped to [-evidence_max, evidence_max] so a

@@ -78,6 +78,49 @@ DenseCloud VoxelDownsample(const DenseCloud& points, double leaf) {
   return out;
 }
 
+DenseCloud WeightedVoxelDownsample(const DenseCloud& points, const std::vector<float>& weights,
+                                   double leaf, std::vector<float>* voxel_weights) {
+  struct Weighted {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Vector3d colour = Eigen::Vector3d::Zero();
+    double weight = 0.0;
+    int16_t label = -1;
+    int32_t track = -1;
+  };
+  std::unordered_map<int64_t, uint32_t> slot_of_key;
+  slot_of_key.reserve(points.size() / 4 + 16);
+  std::vector<Weighted> slots;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const DensePoint& point = points[i];
+    const std::optional<int64_t> key = VoxelKey(point.position, leaf);
+    if (!key) continue;
+    const auto [it, inserted] = slot_of_key.try_emplace(*key, static_cast<uint32_t>(slots.size()));
+    if (inserted) slots.emplace_back();
+    Weighted& a = slots[it->second];
+    const double w = weights[i];
+    a.sum += w * point.position.cast<double>();
+    a.colour += w * Eigen::Vector3d(point.r, point.g, point.b);
+    a.weight += w;
+    if (a.label < 0) a.label = point.label;
+    if (a.track < 0) a.track = point.track;
+  }
+  DenseCloud out(slots.size());
+  voxel_weights->resize(slots.size());
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const Weighted& a = slots[i];
+    DensePoint& p = out[i];
+    p.position = (a.sum / a.weight).cast<float>();
+    const Eigen::Vector3d colour = a.colour / a.weight;
+    p.r = static_cast<uint8_t>(std::lround(colour.x()));
+    p.g = static_cast<uint8_t>(std::lround(colour.y()));
+    p.b = static_cast<uint8_t>(std::lround(colour.z()));
+    p.label = a.label;
+    p.track = a.track;
+    (*voxel_weights)[i] = static_cast<float>(a.weight);
+  }
+  return out;
+}
+
 DenseCloud RemoveIsolatedPoints(const DenseCloud& points, double leaf, int min_neighbours) {
   if (min_neighbours <= 0) return points;
   DenseCloud kept;

@@ -30,6 +30,11 @@ Eigen::Matrix<int64_t, 3, 1> UnpackVoxel(int64_t key);
 // Output order is the order in which voxels were first met, so it is deterministic.
 DenseCloud VoxelDownsample(const DenseCloud& points, double leaf);
 
+// The same with a weight per point (positive; weights.size() == points.size()): the weighted
+// centroid and colour per voxel; `voxel_weights` receives each voxel's summed weight.
+DenseCloud WeightedVoxelDownsample(const DenseCloud& points, const std::vector<float>& weights,
+                                   double leaf, std::vector<float>* voxel_weights);
+
 // Keeps the points with at least `min_neighbours` of the 26 neighbouring voxels (edge `leaf`)
 // occupied by other points of the cloud: isolated depth outliers go, surfaces stay.
 DenseCloud RemoveIsolatedPoints(const DenseCloud& points, double leaf, int min_neighbours);
