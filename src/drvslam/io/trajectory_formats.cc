@@ -27,15 +27,6 @@ bool PathExists(const std::string& path) {
   return fs::is_regular_file(path, error);
 }
 
-void CheckFinite(const std::vector<std::string>& fields, const double* values, std::size_t count,
-                 const std::string& where) {
-  for (std::size_t k = 0; k < count; ++k) {
-    if (!std::isfinite(values[k])) {
-      throw Error(where + ": value '" + fields[k] + "' is not finite");
-    }
-  }
-}
-
 // A whole field of decimal digits as nanoseconds; an Error naming `where` otherwise.
 long long ParseNanoseconds(const std::string& field, const std::string& where) {
   bool digits = !field.empty();
@@ -113,8 +104,7 @@ Trajectory ReadEuroc(const std::string& path, bool allow_empty) {
     }
     const long long ns = ParseNanoseconds(fields[0], where);
     double v[7];
-    for (int k = 0; k < 7; ++k) v[k] = ParseNumber(fields[k + 1], where);
-    CheckFinite({fields.begin() + 1, fields.begin() + 8}, v, 7, where);
+    ParseFiniteNumbers({fields.begin() + 1, fields.begin() + 8}, 7, where, v);
     const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
     if (q.norm() < 1e-9) throw Error(where + ": quaternion has zero length");
     AppendStampedPose({NanosecondsToSeconds(ns), SE3(q, Eigen::Vector3d(v[0], v[1], v[2]))},
@@ -131,30 +121,26 @@ struct KittiPose {
 
 std::vector<KittiPose> ReadKittiPoses(const std::string& path) {
   std::vector<KittiPose> poses;
-  ForEachDataLine(path, [&](int line_number, const std::vector<std::string>& fields) {
-    const std::string where = path + ":" + std::to_string(line_number);
-    if (fields.size() != 12) {
-      throw Error(where + ": expected 12 values (a 3x4 pose matrix, row-major), found " +
-                  std::to_string(fields.size()));
-    }
-    double v[12];
-    for (int k = 0; k < 12; ++k) v[k] = ParseNumber(fields[k], where);
-    CheckFinite(fields, v, 12, where);
-    Eigen::Matrix3d rotation;
-    rotation << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
-    // KITTI's ground truth carries 6 significant digits; a block further than this from a
-    // rotation is not a pose (a shifted column, a transposed file).
-    const double off =
-        (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-    if (off > 1e-4 || rotation.determinant() <= 0.0) {
-      char text[128];
-      std::snprintf(text, sizeof(text),
-                    ": the 3x3 block is not a rotation (|R^T R - I| = %.3g, det = %.3g)", off,
-                    rotation.determinant());
-      throw Error(where + text);
-    }
-    poses.push_back({SE3(rotation, Eigen::Vector3d(v[3], v[7], v[11])), where});
-  });
+  ForEachRecord(
+      path, 12, "12 values (a 3x4 pose matrix, row-major)",
+      [&](int, const std::string& where, const std::vector<std::string>& fields) {
+        double v[12];
+        ParseFiniteNumbers(fields, 12, where, v);
+        Eigen::Matrix3d rotation;
+        rotation << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+        // KITTI's ground truth carries 6 significant digits; a block further than this from a
+        // rotation is not a pose (a shifted column, a transposed file).
+        const double off =
+            (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+        if (off > 1e-4 || rotation.determinant() <= 0.0) {
+          char text[128];
+          std::snprintf(text, sizeof(text),
+                        ": the 3x3 block is not a rotation (|R^T R - I| = %.3g, det = %.3g)", off,
+                        rotation.determinant());
+          throw Error(where + text);
+        }
+        poses.push_back({SE3(rotation, Eigen::Vector3d(v[3], v[7], v[11])), where});
+      });
   return poses;
 }
 
@@ -166,16 +152,14 @@ struct StampLine {
 
 std::vector<StampLine> ReadKittiTimes(const std::string& path) {
   std::vector<StampLine> stamps;
-  ForEachDataLine(path, [&](int line_number, const std::vector<std::string>& fields) {
-    const std::string where = path + ":" + std::to_string(line_number);
-    if (fields.size() != 1) {
-      throw Error(where + ": expected 1 value (timestamp in seconds), found " +
-                  std::to_string(fields.size()));
-    }
-    const double stamp = ParseNumber(fields[0], where);
-    if (!std::isfinite(stamp)) throw Error(where + ": timestamp '" + fields[0] + "' is not finite");
-    stamps.push_back({stamp, fields[0], where});
-  });
+  ForEachRecord(path, 1, "1 value (timestamp in seconds)",
+                [&](int, const std::string& where, const std::vector<std::string>& fields) {
+                  const double stamp = ParseNumber(fields[0], where);
+                  if (!std::isfinite(stamp)) {
+                    throw Error(where + ": timestamp '" + fields[0] + "' is not finite");
+                  }
+                  stamps.push_back({stamp, fields[0], where});
+                });
   return stamps;
 }
 
@@ -274,31 +258,32 @@ TrajectoryFormat DetectTrajectoryFormat(const std::string& path) {
     if (fs::is_directory(path, error)) throw Error(path + ": is a folder, not a file");
     throw Error(path + ": file does not exist");
   }
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open for reading");
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const std::vector<std::string> fields = SplitFields(line);
-    if (fields.empty()) continue;
+  // The first data line decides, unless a EuRoC header comes before it; an empty file is TUM.
+  TrajectoryFormat format = TrajectoryFormat::kTum;
+  ForEachLine(path, [&](int line_number, const std::string& line,
+                        const std::vector<std::string>& fields) {
+    if (fields.empty()) return true;
     if (fields.front().front() == '#') {
-      if (line.find("p_RS_R_x") != std::string::npos || line.find("[ns]") != std::string::npos) {
-        return TrajectoryFormat::kEuroc;
+      if (line.find("p_RS_R_x") == std::string::npos && line.find("[ns]") == std::string::npos) {
+        return true;
       }
-      continue;
+      format = TrajectoryFormat::kEuroc;
+      return false;
     }
     const bool commas = line.find(',') != std::string::npos;
-    if (fields.size() == 12) return TrajectoryFormat::kKitti;
-    if (commas && fields.size() >= 8 && IsDigits(fields[0])) return TrajectoryFormat::kEuroc;
-    if (fields.size() == 8) return TrajectoryFormat::kTum;
-    throw Error(path + ":" + std::to_string(line_number) +
-                ": cannot tell the trajectory format from " + std::to_string(fields.size()) +
-                " values (tum has 8, kitti 12, euroc 8 or more comma-separated with an integer "
-                "nanosecond stamp); name the format explicitly");
-  }
-  if (in.bad()) throw Error(path + ": read error");
-  return TrajectoryFormat::kTum;
+    if (fields.size() == 12) {
+      format = TrajectoryFormat::kKitti;
+    } else if (commas && fields.size() >= 8 && IsDigits(fields[0])) {
+      format = TrajectoryFormat::kEuroc;
+    } else if (fields.size() != 8) {
+      throw Error(path + ":" + std::to_string(line_number) +
+                  ": cannot tell the trajectory format from " + std::to_string(fields.size()) +
+                  " values (tum has 8, kitti 12, euroc 8 or more comma-separated with an integer "
+                  "nanosecond stamp); name the format explicitly");
+    }
+    return false;
+  });
+  return format;
 }
 
 Trajectory ReadTrajectory(const std::string& path, const TrajectoryReadOptions& options) {

@@ -21,22 +21,15 @@ std::string FormatStamp(double stamp) {
 
 Trajectory ReadTumTrajectory(const std::string& path, bool allow_empty) {
   Trajectory trajectory;
-  ForEachDataLine(path, [&](int line_number, const std::vector<std::string>& fields) {
-    const std::string where = path + ":" + std::to_string(line_number);
-    if (fields.size() != 8) {
-      throw Error(where + ": expected 8 values (timestamp tx ty tz qx qy qz qw), found " +
-                  std::to_string(fields.size()));
-    }
-    double v[8];
-    for (int k = 0; k < 8; ++k) v[k] = ParseNumber(fields[k], where);
-    for (int k = 0; k < 8; ++k) {
-      if (!std::isfinite(v[k])) throw Error(where + ": value '" + fields[k] + "' is not finite");
-    }
-    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-    if (q.norm() < 1e-9) throw Error(where + ": quaternion has zero length");
-    AppendStampedPose({v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3]))}, fields[0], where,
-                      &trajectory);
-  });
+  ForEachRecord(path, 8, "8 values (timestamp tx ty tz qx qy qz qw)",
+                [&](int, const std::string& where, const std::vector<std::string>& fields) {
+                  double v[8];
+                  ParseFiniteNumbers(fields, 8, where, v);
+                  const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+                  if (q.norm() < 1e-9) throw Error(where + ": quaternion has zero length");
+                  AppendStampedPose({v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3]))}, fields[0],
+                                    where, &trajectory);
+                });
   if (trajectory.empty() && !allow_empty) throw Error(path + ": trajectory has no poses");
   return trajectory;
 }

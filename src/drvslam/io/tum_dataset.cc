@@ -91,21 +91,18 @@ std::vector<StampedPath> ReadStampList(const std::string& path, const std::strin
   RequireFile(path, "image list");
   std::vector<StampedPath> list;
   int previous_line = 0;
-  ForEachDataLine(path, [&](int line_number, const std::vector<std::string>& fields) {
-    const std::string where = path + ":" + std::to_string(line_number);
-    if (fields.size() != 2) {
-      throw Error(where + ": expected 2 fields (timestamp image_path), found " +
-                  std::to_string(fields.size()));
-    }
-    const double stamp = ParseStamp(fields[0], where);
-    const std::string image = JoinPath(folder, fields[1]);
-    if (!list.empty() && DropIfNotIncreasing(stamp, fields[0], list.back().stamp, previous_line,
-                                             where, image, dropped)) {
-      return;
-    }
-    list.push_back({stamp, image});
-    previous_line = line_number;
-  });
+  ForEachRecord(
+      path, 2, "2 fields (timestamp image_path)",
+      [&](int line_number, const std::string& where, const std::vector<std::string>& fields) {
+        const double stamp = ParseStamp(fields[0], where);
+        const std::string image = JoinPath(folder, fields[1]);
+        if (!list.empty() && DropIfNotIncreasing(stamp, fields[0], list.back().stamp, previous_line,
+                                                 where, image, dropped)) {
+          return;
+        }
+        list.push_back({stamp, image});
+        previous_line = line_number;
+      });
   if (list.empty()) throw Error(path + ": lists no images");
   return list;
 }
@@ -208,22 +205,20 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
   if (PathExists(associations)) {
     RequireFile(associations, "association list");
     int previous_line = 0;
-    ForEachDataLine(associations, [&](int line_number, const std::vector<std::string>& fields) {
-      const std::string where = associations + ":" + std::to_string(line_number);
-      if (fields.size() != 4) {
-        throw Error(where + ": expected 4 fields (t_rgb rgb_path t_depth depth_path), found " +
-                    std::to_string(fields.size()));
-      }
-      const double rgb_stamp = ParseStamp(fields[0], where);
-      const double depth_stamp = ParseStamp(fields[2], where);
-      const std::string rgb_path = JoinPath(folder_, fields[1]);
-      if (!entries_.empty() && DropIfNotIncreasing(rgb_stamp, fields[0], entries_.back().rgb_stamp,
-                                                   previous_line, where, rgb_path, &dropped_)) {
-        return;
-      }
-      entries_.push_back({rgb_stamp, depth_stamp, rgb_path, JoinPath(folder_, fields[3])});
-      previous_line = line_number;
-    });
+    ForEachRecord(
+        associations, 4, "4 fields (t_rgb rgb_path t_depth depth_path)",
+        [&](int line_number, const std::string& where, const std::vector<std::string>& fields) {
+          const double rgb_stamp = ParseStamp(fields[0], where);
+          const double depth_stamp = ParseStamp(fields[2], where);
+          const std::string rgb_path = JoinPath(folder_, fields[1]);
+          if (!entries_.empty() &&
+              DropIfNotIncreasing(rgb_stamp, fields[0], entries_.back().rgb_stamp, previous_line,
+                                  where, rgb_path, &dropped_)) {
+            return;
+          }
+          entries_.push_back({rgb_stamp, depth_stamp, rgb_path, JoinPath(folder_, fields[3])});
+          previous_line = line_number;
+        });
     if (entries_.empty()) throw Error(associations + ": lists no frames");
   } else {
     const std::string rgb_list_path = JoinPath(folder_, "rgb.txt");

@@ -3,6 +3,20 @@
 #include <algorithm>
 
 namespace drvslam {
+namespace {
+
+// The values of an id-keyed std::map, in ascending id order (so that callers' loops are
+// deterministic).
+template <typename Object>
+std::vector<std::shared_ptr<Object>> ValuesInIdOrder(
+    const std::map<long, std::shared_ptr<Object>>& by_id) {
+  std::vector<std::shared_ptr<Object>> values;
+  values.reserve(by_id.size());
+  for (const auto& [id, value] : by_id) values.push_back(value);
+  return values;
+}
+
+}  // namespace
 
 long Map::NextKeyFrameId() {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -42,18 +56,12 @@ void Map::EraseMapPoint(long id) {
 
 std::vector<std::shared_ptr<KeyFrame>> Map::KeyFrames() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  std::vector<std::shared_ptr<KeyFrame>> result;
-  result.reserve(keyframes_.size());
-  for (const auto& [id, keyframe] : keyframes_) result.push_back(keyframe);
-  return result;
+  return ValuesInIdOrder(keyframes_);
 }
 
 std::vector<std::shared_ptr<MapPoint>> Map::MapPoints() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  std::vector<std::shared_ptr<MapPoint>> result;
-  result.reserve(map_points_.size());
-  for (const auto& [id, point] : map_points_) result.push_back(point);
-  return result;
+  return ValuesInIdOrder(map_points_);
 }
 
 std::size_t Map::KeyFrameCount() const {

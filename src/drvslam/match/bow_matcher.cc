@@ -40,6 +40,31 @@ int RejectRotations(const RotationConsistency& rotations,
   return count;
 }
 
+// One shared vocabulary node: for each index i of `indices1` whose point is usable, the nearest
+// of the `indices2` rows that `free2(j)` allows, by descriptor distance; calls matched(i, j)
+// when that one passes the distance and ratio tests.
+template <typename Free, typename Matched>
+void MatchInNode(const std::vector<unsigned>& indices1, const std::vector<unsigned>& indices2,
+                 const std::vector<std::shared_ptr<MapPoint>>& points1, const cv::Mat& descriptors1,
+                 const cv::Mat& descriptors2, const BowMatchOptions& options, Free free2,
+                 Matched matched) {
+  for (const unsigned i : indices1) {
+    const auto& point1 = points1[i];
+    if (!point1 || point1->IsBad()) continue;
+    const uint8_t* descriptor = Row(descriptors1, i);
+    NearestTwo nearest;
+    for (const unsigned j : indices2) {
+      if (!free2(j)) continue;
+      nearest.Offer(DescriptorDistance(descriptor, Row(descriptors2, j)), static_cast<int>(j));
+    }
+    if (nearest.index < 0 || nearest.best > options.max_distance ||
+        nearest.best >= options.nn_ratio * nearest.second) {
+      continue;
+    }
+    matched(i, nearest.index);
+  }
+}
+
 }  // namespace
 
 int SearchByBow(const KeyFrame& keyframe, const Frame& frame, const BowMatchOptions& options,
@@ -56,27 +81,17 @@ int SearchByBow(const KeyFrame& keyframe, const Frame& frame, const BowMatchOpti
   ForEachSharedNode(
       keyframe.BowFeatures(), frame.bow_features,
       [&](const std::vector<unsigned>& kf_indices, const std::vector<unsigned>& frame_indices) {
-        for (const unsigned i : kf_indices) {
-          const auto& point = points[i];
-          if (!point || point->IsBad()) continue;
-          const uint8_t* descriptor = Row(kf_descriptors, i);
-          NearestTwo nearest;
-          for (const unsigned j : frame_indices) {
-            if ((*matches)[j]) continue;
-            nearest.Offer(DescriptorDistance(descriptor, Row(descriptors, j)), static_cast<int>(j));
-          }
-          if (nearest.index < 0 || nearest.best > options.max_distance ||
-              nearest.best >= options.nn_ratio * nearest.second) {
-            continue;
-          }
-          (*matches)[nearest.index] = point;
-          ++count;
-          if (options.check_orientation) {
-            rotations.Add(
-                kf_features.KeypointsUn()[i].angle - features.KeypointsUn()[nearest.index].angle,
-                nearest.index);
-          }
-        }
+        MatchInNode(
+            kf_indices, frame_indices, points, kf_descriptors, descriptors, options,
+            [&](unsigned j) { return !(*matches)[j]; },
+            [&](unsigned i, int j) {
+              (*matches)[j] = points[i];
+              ++count;
+              if (options.check_orientation) {
+                rotations.Add(kf_features.KeypointsUn()[i].angle - features.KeypointsUn()[j].angle,
+                              j);
+              }
+            });
       });
   if (options.check_orientation) count = RejectRotations(rotations, matches, count);
   return count;
@@ -98,31 +113,18 @@ int SearchByBow(const KeyFrame& kf1, const KeyFrame& kf2, const BowMatchOptions&
   ForEachSharedNode(
       kf1.BowFeatures(), kf2.BowFeatures(),
       [&](const std::vector<unsigned>& indices1, const std::vector<unsigned>& indices2) {
-        for (const unsigned i : indices1) {
-          const auto& point1 = points1[i];
-          if (!point1 || point1->IsBad()) continue;
-          const uint8_t* descriptor = Row(descriptors1, i);
-          NearestTwo nearest;
-          for (const unsigned j : indices2) {
-            if (taken2[j]) continue;
-            const auto& point2 = points2[j];
-            if (!point2 || point2->IsBad()) continue;
-            nearest.Offer(DescriptorDistance(descriptor, Row(descriptors2, j)),
-                          static_cast<int>(j));
-          }
-          if (nearest.index < 0 || nearest.best > options.max_distance ||
-              nearest.best >= options.nn_ratio * nearest.second) {
-            continue;
-          }
-          (*matches12)[i] = points2[nearest.index];
-          taken2[nearest.index] = true;
-          ++count;
-          if (options.check_orientation) {
-            rotations.Add(
-                features1.KeypointsUn()[i].angle - features2.KeypointsUn()[nearest.index].angle,
-                static_cast<int>(i));
-          }
-        }
+        MatchInNode(
+            indices1, indices2, points1, descriptors1, descriptors2, options,
+            [&](unsigned j) { return !taken2[j] && points2[j] && !points2[j]->IsBad(); },
+            [&](unsigned i, int j) {
+              (*matches12)[i] = points2[j];
+              taken2[j] = true;
+              ++count;
+              if (options.check_orientation) {
+                rotations.Add(features1.KeypointsUn()[i].angle - features2.KeypointsUn()[j].angle,
+                              static_cast<int>(i));
+              }
+            });
       });
   if (options.check_orientation) count = RejectRotations(rotations, matches12, count);
   return count;

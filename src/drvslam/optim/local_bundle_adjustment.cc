@@ -89,30 +89,33 @@ double ObservationChi2(const ProjectionIntrinsics& k, const double* pose, const 
   return e2 * o.inv_sigma2;
 }
 
+// The cost of one observation with kResiduals rows (2: pixel, 3: pixel and right-image u).
+template <int kResiduals>
+std::unique_ptr<ceres::CostFunction> MakeProjectionCost(BundleDerivatives derivatives,
+                                                        const ProjectionIntrinsics& intrinsics,
+                                                        const Measurement<kResiduals>& measured,
+                                                        double sqrt_information) {
+  if (derivatives == BundleDerivatives::kAnalytic) {
+    return std::make_unique<BundleProjectionCost<kResiduals>>(intrinsics, measured,
+                                                              sqrt_information);
+  }
+  using Functor = BundleProjectionFunctor<kResiduals>;
+  auto functor = std::make_unique<Functor>(Functor{intrinsics, measured, sqrt_information});
+  return std::make_unique<
+      ceres::AutoDiffCostFunction<Functor, kResiduals, kPoseAmbientSize, kPointSize>>(
+      functor.release());
+}
+
 std::unique_ptr<ceres::CostFunction> MakeCost(BundleDerivatives derivatives,
                                               const ProjectionIntrinsics& intrinsics,
                                               const BundleObservation& o) {
   const double sqrt_information = std::sqrt(o.inv_sigma2);
   if (o.right_u >= 0.0) {
     const Measurement<3> measured(o.pixel.x(), o.pixel.y(), o.right_u);
-    if (derivatives == BundleDerivatives::kAnalytic) {
-      return std::make_unique<BundleProjectionCost<3>>(intrinsics, measured, sqrt_information);
-    }
-    auto functor = std::make_unique<BundleProjectionFunctor<3>>(
-        BundleProjectionFunctor<3>{intrinsics, measured, sqrt_information});
-    return std::make_unique<
-        ceres::AutoDiffCostFunction<BundleProjectionFunctor<3>, 3, kPoseAmbientSize, kPointSize>>(
-        functor.release());
+    return MakeProjectionCost<3>(derivatives, intrinsics, measured, sqrt_information);
   }
   const Measurement<2> measured = o.pixel;
-  if (derivatives == BundleDerivatives::kAnalytic) {
-    return std::make_unique<BundleProjectionCost<2>>(intrinsics, measured, sqrt_information);
-  }
-  auto functor = std::make_unique<BundleProjectionFunctor<2>>(
-      BundleProjectionFunctor<2>{intrinsics, measured, sqrt_information});
-  return std::make_unique<
-      ceres::AutoDiffCostFunction<BundleProjectionFunctor<2>, 2, kPoseAmbientSize, kPointSize>>(
-      functor.release());
+  return MakeProjectionCost<2>(derivatives, intrinsics, measured, sqrt_information);
 }
 
 // The parameter blocks, costs and kernels shared by both passes.

@@ -170,6 +170,25 @@ Consensus Estimate(const std::vector<Eigen::Vector3d>& a, const std::vector<Eige
   return best;
 }
 
+// Both public estimators: checks the input, runs RANSAC and fills the fields their results
+// share; `model` (when given) receives the best model, scale included.
+template <typename Result>
+Result EstimateChecked(const char* caller, const std::vector<Eigen::Vector3d>& a,
+                       const std::vector<Eigen::Vector3d>& b, const std::vector<double>& tolerance,
+                       const RigidRansacOptions& options, bool with_scale,
+                       Similarity* model = nullptr) {
+  options.Check();
+  CheckInput(caller, a, b, tolerance);
+  const Consensus best = Estimate(a, b, tolerance, options, with_scale);
+  Result result;
+  result.inliers = best.inliers;
+  result.inlier_count = best.count;
+  result.found = best.count >= options.min_inliers;
+  if (result.found) result.T_ab = SE3(best.model.rotation, best.model.translation);
+  if (model != nullptr) *model = best.model;
+  return result;
+}
+
 }  // namespace
 
 void RigidRansacOptions::Check() const {
@@ -185,32 +204,18 @@ RigidRansacResult EstimateRigidTransformRansac(const std::vector<Eigen::Vector3d
                                                const std::vector<Eigen::Vector3d>& b,
                                                const std::vector<double>& tolerance,
                                                const RigidRansacOptions& options) {
-  options.Check();
-  CheckInput("EstimateRigidTransformRansac", a, b, tolerance);
-  const Consensus best = Estimate(a, b, tolerance, options, /*with_scale=*/false);
-  RigidRansacResult result;
-  result.inliers = best.inliers;
-  result.inlier_count = best.count;
-  result.found = best.count >= options.min_inliers;
-  if (result.found) result.T_ab = SE3(best.model.rotation, best.model.translation);
-  return result;
+  return EstimateChecked<RigidRansacResult>("EstimateRigidTransformRansac", a, b, tolerance,
+                                            options, /*with_scale=*/false);
 }
 
 SimilarityRansacResult EstimateSimilarityTransformRansac(const std::vector<Eigen::Vector3d>& a,
                                                          const std::vector<Eigen::Vector3d>& b,
                                                          const std::vector<double>& tolerance,
                                                          const RigidRansacOptions& options) {
-  options.Check();
-  CheckInput("EstimateSimilarityTransformRansac", a, b, tolerance);
-  const Consensus best = Estimate(a, b, tolerance, options, /*with_scale=*/true);
-  SimilarityRansacResult result;
-  result.inliers = best.inliers;
-  result.inlier_count = best.count;
-  result.found = best.count >= options.min_inliers;
-  if (result.found) {
-    result.scale = best.model.scale;
-    result.T_ab = SE3(best.model.rotation, best.model.translation);
-  }
+  Similarity model;
+  SimilarityRansacResult result = EstimateChecked<SimilarityRansacResult>(
+      "EstimateSimilarityTransformRansac", a, b, tolerance, options, /*with_scale=*/true, &model);
+  if (result.found) result.scale = model.scale;
   return result;
 }
 

@@ -38,12 +38,10 @@ RigidRansacResult EstimateRigidTransformRansac(const std::vector<Eigen::Vector3d
                                                const std::vector<double>& tolerance,
                                                const RigidRansacOptions& options = {});
 
-struct SimilarityRansacResult {
-  bool found = false;
+// The rigid result's fields, with T_ab holding the rotation and translation:
+// a[i] ≈ scale * (T_ab.Rotation() * b[i]) + translation.
+struct SimilarityRansacResult : RigidRansacResult {
   double scale = 1.0;
-  SE3 T_ab;  // rotation and translation: a[i] ≈ scale * (T_ab.Rotation() * b[i]) + translation
-  std::vector<bool> inliers;
-  int inlier_count = 0;
 };
 
 // The same with a free scale: a[i] ≈ s R b[i] + t.

@@ -75,13 +75,28 @@ class Builder {
     return bank_->Add(request);
   }
 
-  void Box(const SE3& pose, const Eigen::Vector3d& size, double density, TextureStyle style,
-           int instance_id = 0, cv::Vec3b colour = {128, 128, 128}) {
-    const Eigen::Vector2d atlas = BoxAtlasSize(size);
+  // A new texture for a solid whose faces unfold into `atlas` (metres), on an instance.
+  SurfaceTag SolidTag(const Eigen::Vector2d& atlas, double density, TextureStyle style,
+                      int instance_id, cv::Vec3b colour) {
     SurfaceTag tag;
     tag.texture = Texture(atlas.x(), atlas.y(), density, style, colour);
     tag.instance_id = instance_id;
-    AddBox(pose, size, tag, &scene_.triangles);
+    return tag;
+  }
+
+  void Box(const SE3& pose, const Eigen::Vector3d& size, double density, TextureStyle style,
+           int instance_id = 0, cv::Vec3b colour = {128, 128, 128}) {
+    AddBox(pose, size, SolidTag(BoxAtlasSize(size), density, style, instance_id, colour),
+           &scene_.triangles);
+  }
+
+  // An upright 16-sided object with a label texture; returns its tag for parts that share it.
+  SurfaceTag LabelledCylinder(const SE3& base, double radius, double height, int instance_id,
+                              cv::Vec3b colour) {
+    const SurfaceTag tag = SolidTag(CylinderAtlasSize(radius, height), kObjectDensity,
+                                    TextureStyle::kLabel, instance_id, colour);
+    AddCylinder(base, radius, height, 16, tag, &scene_.triangles);
+    return tag;
   }
 
   // A rectangle seen from the front, from its bottom-left corner along `right` and `up` (unit),
@@ -266,24 +281,14 @@ class Builder {
     {
       const int id = NextInstance("cup", CocoClassId("cup"));
       const SE3 base = Pose(0.05 + jitter(0.05), 0.2 + jitter(0.03), top, jitter(M_PI));
-      const Eigen::Vector2d atlas = CylinderAtlasSize(0.04, 0.1);
-      SurfaceTag tag;
-      tag.texture = Texture(atlas.x(), atlas.y(), kObjectDensity, TextureStyle::kLabel,
-                            RandomColour(0.5, 1.0));
-      tag.instance_id = id;
-      AddCylinder(base, 0.04, 0.1, 16, tag, &scene_.triangles);
+      LabelledCylinder(base, 0.04, 0.1, id, RandomColour(0.5, 1.0));
       Box(base * Pose(0.05, 0, 0.05), {0.02, 0.012, 0.06}, kObjectDensity, TextureStyle::kLabel, id,
           RandomColour(0.5, 1.0));
     }
     {
       const int id = NextInstance("bottle", CocoClassId("bottle"));
       const SE3 base = Pose(-0.08 + jitter(0.04), 0.32 + jitter(0.03), top, jitter(M_PI));
-      const Eigen::Vector2d atlas = CylinderAtlasSize(0.035, 0.2);
-      SurfaceTag tag;
-      tag.texture = Texture(atlas.x(), atlas.y(), kObjectDensity, TextureStyle::kLabel,
-                            RandomColour(0.3, 1.0));
-      tag.instance_id = id;
-      AddCylinder(base, 0.035, 0.2, 16, tag, &scene_.triangles);
+      const SurfaceTag tag = LabelledCylinder(base, 0.035, 0.2, id, RandomColour(0.3, 1.0));
       AddCylinder(base * Pose(0, 0, 0.2), 0.015, 0.06, 12, tag, &scene_.triangles);
     }
     // Books: a stack of two on the right, one lying askew on the left.

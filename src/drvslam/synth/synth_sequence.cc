@@ -8,6 +8,7 @@
 
 #include "drvslam/core/coco_classes.h"
 #include "drvslam/core/error.h"
+#include "drvslam/core/options_registry.h"
 #include "drvslam/synth/billboard.h"
 #include "drvslam/synth/depth_shift.h"
 #include "drvslam/synth/photo_library.h"
@@ -30,15 +31,6 @@ std::string CocoName(std::string name) {
     if (ch == '_') ch = ' ';
   }
   return name;
-}
-
-std::string Quote(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char ch : text) {
-    if (ch == '"' || ch == '\\') quoted += '\\';
-    quoted += ch;
-  }
-  return quoted + "\"";
 }
 
 template <typename T>
@@ -215,16 +207,17 @@ std::string SynthSequence::SettingsExtraYaml() const {
     yaml += std::string("Synth.") + key + ": " + value + "\n";
   };
   const auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
-  add("Scenario", Quote(scenario_->name));
-  add("StaticCounterpart", Quote(StaticCounterpart(*scenario_)));
+  add("Scenario", option_format::YamlText(scenario_->name));
+  add("StaticCounterpart", option_format::YamlText(StaticCounterpart(*scenario_)));
   add("Seed", Number(static_cast<long long>(options_.seed)));
   add("Frames", Number(FrameCount()));
   add("Actors", Number(actors_.Count()));
-  add("ActorClass", Quote(actors_.Count() > 0 ? CocoName(options_.actor_class) : ""));
-  add("Billboards", Quote(options_.billboards));
-  add("Path", Quote(PathKindName(path_.Kind())));
-  add("Trajectory", Quote(options_.trajectory));
-  add("Textures", Quote(texture_source_));
+  add("ActorClass",
+      option_format::YamlText(actors_.Count() > 0 ? CocoName(options_.actor_class) : ""));
+  add("Billboards", option_format::YamlText(options_.billboards));
+  add("Path", option_format::YamlText(PathKindName(path_.Kind())));
+  add("Trajectory", option_format::YamlText(options_.trajectory));
+  add("Textures", option_format::YamlText(texture_source_));
   add("RoomMinX", Number(layout_.min.x()));
   add("RoomMinY", Number(layout_.min.y()));
   add("RoomMinZ", Number(layout_.min.z()));
@@ -263,7 +256,7 @@ std::string SynthSequence::SettingsExtraYaml() const {
   add("RealRollingShutterReadout", Number(r.rolling_shutter_readout));
   add("RealRollingShutterSteps", Number(r.rolling_shutter_steps));
   add("RealDepthGlobalShutter", flag(r.depth_global_shutter));
-  add("RealTimestampRow", Quote("middle"));
+  add("RealTimestampRow", option_format::YamlText("middle"));
   add("RealDepthShiftX", Number(r.depth_shift_x));
   add("RealDepthShiftY", Number(r.depth_shift_y));
   add("RealIntrinsicsError", Number(r.intrinsics_error));

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -25,20 +26,21 @@ std::string LowerExtension(const fs::path& path) {
   return extension;
 }
 
-bool IsImageFile(const fs::path& path) {
-  static const char* const kExtensions[] = {".png",  ".jpg", ".jpeg", ".bmp", ".tif",
-                                            ".tiff", ".pgm", ".ppm",  ".webp"};
+// Whether the file name ends in one of `extensions` (lower case, with the dot), in any case.
+bool HasExtension(const fs::path& path, std::initializer_list<const char*> extensions) {
   const std::string extension = LowerExtension(path);
-  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
+  return std::any_of(extensions.begin(), extensions.end(),
                      [&](const char* e) { return extension == e; });
 }
 
+bool IsImageFile(const fs::path& path) {
+  return HasExtension(path,
+                      {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".webp"});
+}
+
 bool IsVideoFile(const fs::path& path) {
-  static const char* const kExtensions[] = {".avi",  ".mp4",  ".mkv", ".mov", ".mpg",
-                                            ".mpeg", ".webm", ".m4v", ".wmv"};
-  const std::string extension = LowerExtension(path);
-  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
-                     [&](const char* e) { return extension == e; });
+  return HasExtension(path,
+                      {".avi", ".mp4", ".mkv", ".mov", ".mpg", ".mpeg", ".webm", ".m4v", ".wmv"});
 }
 
 cv::VideoCapture OpenVideo(const std::string& path) {
