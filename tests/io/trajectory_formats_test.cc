@@ -1,7 +1,6 @@
 #include "drvslam/io/trajectory_formats.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -13,6 +12,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/io/text_lines.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
@@ -48,16 +48,8 @@ std::vector<std::string> Lines(const std::string& path) {
   return lines;
 }
 
-class TrajectoryFormatsTest : public ::testing::Test {
+class TrajectoryFormatsTest : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("drvslam_trajectory_formats_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
   std::string Write(const std::string& name, const std::string& body) const {
     std::ofstream(Path(name)) << body;
@@ -77,8 +69,6 @@ class TrajectoryFormatsTest : public ::testing::Test {
       }
     }
   }
-
-  fs::path dir_;
 };
 
 void ExpectSamePoses(const Trajectory& written, const Trajectory& read) {

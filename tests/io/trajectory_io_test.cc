@@ -1,7 +1,6 @@
 #include "drvslam/io/trajectory_io.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 
 #include "drvslam/core/error.h"
 #include "test_support/missing_data.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
@@ -40,16 +40,8 @@ std::vector<std::string> DataLines(const std::string& path) {
   return lines;
 }
 
-class TrajectoryIoTest : public ::testing::Test {
+class TrajectoryIoTest : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("drvslam_trajectory_io_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Write(const std::string& body, const std::string& name = "traj.txt") {
     const std::string path = (dir_ / name).string();
     std::ofstream(path) << body;
@@ -69,8 +61,6 @@ class TrajectoryIoTest : public ::testing::Test {
       EXPECT_NE(message.find(needle), std::string::npos) << message << " lacks " << needle;
     }
   }
-
-  fs::path dir_;
 };
 
 constexpr char kPose[] = " 0.1 0.2 0.3 0 0 0 1\n";
