@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
+#include "test_support/error_message.h"
 #include "test_support/missing_data.h"
 #include "test_support/scratch_folder.h"
 
@@ -50,16 +51,12 @@ class TrajectoryIoTest : public testing::ScratchFolderTest {
 
   // Reading `body` must fail with a message naming the file, `line` (when > 0) and `needle`.
   void ExpectError(const std::string& body, int line, const std::string& needle) {
+    SCOPED_TRACE("trajectory:\n" + body);
     const std::string path = Write(body);
-    try {
-      ReadTumTrajectory(path);
-      FAIL() << "no error for:\n" << body;
-    } catch (const Error& e) {
-      const std::string message = e.what();
-      const std::string location = line > 0 ? path + ":" + std::to_string(line) + ":" : path;
-      EXPECT_NE(message.find(location), std::string::npos) << message << " lacks " << location;
-      EXPECT_NE(message.find(needle), std::string::npos) << message << " lacks " << needle;
-    }
+    const std::string message = testing::ErrorMessageOf([&] { ReadTumTrajectory(path); });
+    const std::string location = line > 0 ? path + ":" + std::to_string(line) + ":" : path;
+    EXPECT_NE(message.find(location), std::string::npos) << message << " lacks " << location;
+    EXPECT_NE(message.find(needle), std::string::npos) << message << " lacks " << needle;
   }
 };
 
