@@ -96,14 +96,18 @@ const BowVocabulary* Pick(int which) {
   return which == 1 ? DefaultVocabulary() : GivenVocabulary();
 }
 
+// The vocabulary range(0) names; null, with the benchmark marked skipped, when it is not available.
+const BowVocabulary* PickOrSkip(benchmark::State& state) {
+  const BowVocabulary* vocabulary = Pick(static_cast<int>(state.range(0)));
+  if (vocabulary == nullptr) state.SkipWithError("vocabulary not available");
+  return vocabulary;
+}
+
 const char* kNames[] = {"synthetic k10 L6", "default", "DRVSLAM_BENCH_VOCABULARY"};
 
 void BM_Transform1000Descriptors(benchmark::State& state) {
-  const BowVocabulary* vocabulary = Pick(static_cast<int>(state.range(0)));
-  if (vocabulary == nullptr) {
-    state.SkipWithError("vocabulary not available");
-    return;
-  }
+  const BowVocabulary* vocabulary = PickOrSkip(state);
+  if (vocabulary == nullptr) return;
   const cv::Mat& descriptors = ImageDescriptors(0);
   const int level = std::max(0, vocabulary->Depth() - kDirectIndexLevelsUp);
   BowVector bow;
@@ -122,11 +126,8 @@ BENCHMARK(BM_Transform1000Descriptors)->DenseRange(0, 2)->Unit(benchmark::kMicro
 
 // The tree descent alone, without building the BowVector and FeatureVector maps.
 void BM_Descend1000Descriptors(benchmark::State& state) {
-  const BowVocabulary* vocabulary = Pick(static_cast<int>(state.range(0)));
-  if (vocabulary == nullptr) {
-    state.SkipWithError("vocabulary not available");
-    return;
-  }
+  const BowVocabulary* vocabulary = PickOrSkip(state);
+  if (vocabulary == nullptr) return;
   const cv::Mat& descriptors = ImageDescriptors(0);
   for (auto _ : state) {
     int sum = 0;
@@ -139,11 +140,8 @@ void BM_Descend1000Descriptors(benchmark::State& state) {
 BENCHMARK(BM_Descend1000Descriptors)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
 void BM_ScoreTwoImages(benchmark::State& state) {
-  const BowVocabulary* vocabulary = Pick(static_cast<int>(state.range(0)));
-  if (vocabulary == nullptr) {
-    state.SkipWithError("vocabulary not available");
-    return;
-  }
+  const BowVocabulary* vocabulary = PickOrSkip(state);
+  if (vocabulary == nullptr) return;
   BowVector a;
   BowVector b;
   vocabulary->Transform(ImageDescriptors(0), &a, nullptr, 0);

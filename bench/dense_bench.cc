@@ -49,33 +49,28 @@ const DenseCloud& FullCloud() {
   return cloud;
 }
 
-void BM_VoxelDownsampleOwn(benchmark::State& state) {
+// The full cloud downsampled by `downsample` (ours or Open3D's) at a leaf of range(0) mm.
+void BM_VoxelDownsample(benchmark::State& state,
+                        DenseCloud (*downsample)(const DenseCloud&, double)) {
   const DenseCloud& cloud = FullCloud();
   const double leaf = state.range(0) / 1000.0;
   std::size_t kept = 0;
   for (auto _ : state) {
-    const DenseCloud out = VoxelDownsample(cloud, leaf);
+    const DenseCloud out = downsample(cloud, leaf);
     kept = out.size();
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["points_in"] = static_cast<double>(cloud.size());
   state.counters["points_out"] = static_cast<double>(kept);
 }
-BENCHMARK(BM_VoxelDownsampleOwn)->Arg(5)->Arg(30)->Unit(benchmark::kMillisecond);
-
-void BM_VoxelDownsampleOpen3d(benchmark::State& state) {
-  const DenseCloud& cloud = FullCloud();
-  const double leaf = state.range(0) / 1000.0;
-  std::size_t kept = 0;
-  for (auto _ : state) {
-    const DenseCloud out = Open3dVoxelDownsample(cloud, leaf);
-    kept = out.size();
-    benchmark::DoNotOptimize(out.data());
-  }
-  state.counters["points_in"] = static_cast<double>(cloud.size());
-  state.counters["points_out"] = static_cast<double>(kept);
-}
-BENCHMARK(BM_VoxelDownsampleOpen3d)->Arg(5)->Arg(30)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelDownsample, Own, &VoxelDownsample)
+    ->Arg(5)
+    ->Arg(30)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelDownsample, Open3d, &Open3dVoxelDownsample)
+    ->Arg(5)
+    ->Arg(30)
+    ->Unit(benchmark::kMillisecond);
 
 // Isolated-point removal on the downsampled keyframe: our voxel-neighbour count against
 // Open3D's statistical filter (k = 20, 2 sigma).

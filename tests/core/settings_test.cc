@@ -8,22 +8,14 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "test_support/error_message.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
 
-namespace fs = std::filesystem;
-
-class SettingsTest : public ::testing::Test {
+class SettingsTest : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("drvslam_settings_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Write(const std::string& body) {
     const std::string path = (dir_ / "settings.yaml").string();
     std::ofstream(path) << "%YAML:1.0\n" << body;
@@ -32,20 +24,14 @@ class SettingsTest : public ::testing::Test {
 
   // Loading must fail with a message that contains every one of `needles`.
   void ExpectError(const std::string& body, std::initializer_list<std::string> needles) {
+    SCOPED_TRACE("settings:\n" + body);
     const std::string path = Write(body);
-    try {
-      LoadSettings(path);
-      FAIL() << "no error for:\n" << body;
-    } catch (const Error& e) {
-      const std::string message = e.what();
-      EXPECT_NE(message.find(path), std::string::npos) << message;
-      for (const std::string& needle : needles) {
-        EXPECT_NE(message.find(needle), std::string::npos) << message << " lacks " << needle;
-      }
+    const std::string message = testing::ErrorMessageOf([&] { LoadSettings(path); });
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    for (const std::string& needle : needles) {
+      EXPECT_NE(message.find(needle), std::string::npos) << message << " lacks " << needle;
     }
   }
-
-  fs::path dir_;
 };
 
 // The camera's fx, fy, cx, cy, k1, k2, p1, p2, k3 as a TUM calibration page lists them.

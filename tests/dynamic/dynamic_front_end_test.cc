@@ -128,6 +128,24 @@ class DynamicFrontEndTest : public ::testing::Test {
                                                        sequence.images[f].depth));
   }
 
+  // Realtime mode over a scripted network that takes network_ms a frame; a likely keyframe
+  // waits up to keyframe_wait_ms for its own masks.
+  static DynamicFrontEndConfig RealtimeConfig(const Sequence& sequence, int network_ms,
+                                              double keyframe_wait_ms) {
+    DynamicFrontEndConfig config;
+    config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, network_ms);
+    config.realtime = true;
+    config.segmentation.keyframe_wait_ms = keyframe_wait_ms;
+    return config;
+  }
+
+  // Frame f (at 30 fps) through the stage: BeginFrame, then Filter on its features.
+  void RunFrame(DynamicFrontEnd& stage, const Sequence& sequence, int f,
+                bool keyframe_likely = false) {
+    stage.BeginFrame(0.033 * f, sequence.bgr[f], keyframe_likely);
+    stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+  }
+
   static int CountOn(const Frame& frame, const cv::Mat& labels, int label) {
     int count = 0;
     for (const cv::KeyPoint& kp : frame.Features().Keypoints()) {
@@ -244,8 +262,7 @@ TEST_F(DynamicFrontEndTest, WritesDebugPicturesAndObjectRows) {
   {
     DynamicFrontEnd stage(config, 1000, map_, nullptr);
     for (int f = 0; f < 3; ++f) {
-      stage.BeginFrame(0.033 * f, sequence.bgr[f]);
-      stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+      RunFrame(stage, sequence, f);
     }
   }
   for (int f = 0; f < 3; ++f) {
@@ -327,18 +344,13 @@ TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNev
   // network is idle when it comes: it waits (up to 1 s here) and gets its own masks. Frame 3 is
   // not expected: it never waits.
   const Sequence sequence = Render(4, false, nullptr, [](int f) { return -0.05 * f; });
-  DynamicFrontEndConfig config;
-  config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 300);
-  config.realtime = true;
-  config.segmentation.keyframe_wait_ms = 1000.0;
-  DynamicFrontEnd stage(config, 1000, map_, nullptr);
+  DynamicFrontEnd stage(RealtimeConfig(sequence, 300, 1000.0), 1000, map_, nullptr);
   const bool likely[] = {false, true, true, false};
   const bool own[] = {false, false, true, false};
   for (int f = 0; f < 4; ++f) {
     // Before frame 2 the network finishes frames 0 and 1 and goes idle.
     if (f == 2) std::this_thread::sleep_for(std::chrono::milliseconds(900));
-    stage.BeginFrame(0.033 * f, sequence.bgr[f], likely[f]);
-    stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+    RunFrame(stage, sequence, f, likely[f]);
     EXPECT_EQ(stage.LastReport().own_masks, own[f]) << "frame " << f;
     stage.NoteKeyFrame(likely[f]);
   }
@@ -353,14 +365,9 @@ TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNev
 TEST_F(DynamicFrontEndTest, RealtimeKeyFrameWaitIsBounded) {
   // keyframeWaitMs 20 against a 600 ms network: the likely keyframe gives up and goes on.
   const Sequence sequence = Render(1, false, nullptr, [](int) { return 0.0; });
-  DynamicFrontEndConfig config;
-  config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 600);
-  config.realtime = true;
-  config.segmentation.keyframe_wait_ms = 20.0;
   StageTimings timings;
-  DynamicFrontEnd stage(config, 1000, map_, &timings);
-  stage.BeginFrame(0.0, sequence.bgr[0], true);
-  stage.Filter(Extract(sequence, 0), sequence.bgr[0], sequence.images[0].depth);
+  DynamicFrontEnd stage(RealtimeConfig(sequence, 600, 20.0), 1000, map_, &timings);
+  RunFrame(stage, sequence, 0, true);
   EXPECT_FALSE(stage.LastReport().own_masks);
   EXPECT_EQ(stage.Stats().keyframe_waits, 1u);
   EXPECT_EQ(stage.Stats().keyframe_waits_fresh, 0u);
@@ -374,17 +381,11 @@ TEST_F(DynamicFrontEndTest, RealtimeKeyFrameDoesNotWaitForMasksDueAfterItsBound)
   // Frame 1 is a likely keyframe that the idle network is about to take, but its masks are
   // due a whole pass later: waiting 20 ms could not bring them, so it does not wait at all.
   const Sequence sequence = Render(2, false, nullptr, [](int) { return 0.0; });
-  DynamicFrontEndConfig config;
-  config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks, 300);
-  config.realtime = true;
-  config.segmentation.keyframe_wait_ms = 20.0;
   StageTimings timings;
-  DynamicFrontEnd stage(config, 1000, map_, &timings);
-  stage.BeginFrame(0.0, sequence.bgr[0], false);
-  stage.Filter(Extract(sequence, 0), sequence.bgr[0], sequence.images[0].depth);
+  DynamicFrontEnd stage(RealtimeConfig(sequence, 300, 20.0), 1000, map_, &timings);
+  RunFrame(stage, sequence, 0, false);
   std::this_thread::sleep_for(std::chrono::milliseconds(600));  // frame 0's pass is done
-  stage.BeginFrame(0.033, sequence.bgr[1], true);
-  stage.Filter(Extract(sequence, 1), sequence.bgr[1], sequence.images[1].depth);
+  RunFrame(stage, sequence, 1, true);
   EXPECT_FALSE(stage.LastReport().own_masks);
   EXPECT_EQ(stage.Stats().keyframe_waits, 0u);
   const TimingSummary wait = timings.Summaries().at("segmentation_wait");
@@ -449,8 +450,7 @@ TEST_F(DynamicFrontEndTest, AWalkingPersonKeepsItsIdThroughAThreeFrameDetectionG
     std::vector<int> ids(frames, -1);
     std::vector<bool> moving(frames, false);
     for (int f = 0; f < frames; ++f) {
-      stage.BeginFrame(0.033 * f, sequence.bgr[f]);
-      stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+      RunFrame(stage, sequence, f);
       const DynamicFrameReport& report = stage.LastReport();
       ASSERT_EQ(report.instances.size(), f >= 3 && f <= 5 ? 0u : 1u) << "frame " << f;
       if (report.instances.empty()) continue;

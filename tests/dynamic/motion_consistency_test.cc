@@ -77,16 +77,21 @@ Pair SidestepPair() {
   return MakePair(prev_camera, cur_camera, {0.03, 0.03});
 }
 
+// The motion-consistency check with `options` over the pair's tracked points; `exclusion` marks
+// the pixels whose pairs may not fit the scene model.
+MotionConsistencyResult RunOnPair(const Pair& pair, const DynamicOptions& options,
+                                  const cv::Mat& exclusion = cv::Mat()) {
+  return MotionConsistency(options).Run(BuildFlowImage(pair.prev.gray, options),
+                                        BuildFlowImage(pair.cur.gray, options), pair.points,
+                                        pair.ids, exclusion, cv::Mat());
+}
+
 TEST(MotionConsistencyTest, FindsAPlantedMovingClusterAndKeepsTheStaticScene) {
   Camera prev_camera;
   Camera cur_camera;
   cur_camera.center = {0.06, 0.01, 0.02};  // translation: parallax between 2 m and 4 m
   const Pair pair = MakePair(prev_camera, cur_camera, {0.0, 0.05});  // the patch drops 5 cm
-  DynamicOptions options;
-  const MotionConsistency consistency(options);
-  const MotionConsistencyResult result = consistency.Run(
-      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
-      pair.ids, cv::Mat(), cv::Mat());
+  const MotionConsistencyResult result = RunOnPair(pair, DynamicOptions());
   EXPECT_EQ(result.model, MotionModel::kFundamental);
   const Counts counts = CountByLabel(result, pair);
   ASSERT_GE(counts.patch, 15);
@@ -103,11 +108,7 @@ TEST(MotionConsistencyTest, ExcludedPairsDoNotFitTheModelButAreTested) {
   const Pair pair = MakePair(prev_camera, cur_camera, {0.0, 0.05});
   cv::Mat exclusion;
   cv::compare(pair.prev.labels, 3, exclusion, cv::CMP_EQ);
-  DynamicOptions options;
-  const MotionConsistency consistency(options);
-  const MotionConsistencyResult result = consistency.Run(
-      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
-      pair.ids, exclusion, cv::Mat());
+  const MotionConsistencyResult result = RunOnPair(pair, DynamicOptions(), exclusion);
   int patch_model_pairs = 0;
   int patch_moving = 0;
   for (const FlowTrack& track : result.tracks) {
@@ -125,10 +126,7 @@ TEST(MotionConsistencyTest, PureRotationFallsBackToTheHomography) {
   cur_camera.yaw = 0.01;  // no translation: every static point obeys one homography
   const Pair pair = MakePair(prev_camera, cur_camera, {0.04, 0.0});
   DynamicOptions options;
-  const MotionConsistency consistency(options);
-  const MotionConsistencyResult result = consistency.Run(
-      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
-      pair.ids, cv::Mat(), cv::Mat());
+  const MotionConsistencyResult result = RunOnPair(pair, options);
   EXPECT_EQ(result.model, MotionModel::kHomography);
   const Counts counts = CountByLabel(result, pair);
   EXPECT_GE(counts.patch_moving, 0.9 * counts.patch);
@@ -136,9 +134,7 @@ TEST(MotionConsistencyTest, PureRotationFallsBackToTheHomography) {
 
   // With the fallback off, the fundamental matrix is fitted anyway.
   options.min_parallax_share = 0.0;
-  const MotionConsistencyResult plain = MotionConsistency(options).Run(
-      BuildFlowImage(pair.prev.gray, options), BuildFlowImage(pair.cur.gray, options), pair.points,
-      pair.ids, cv::Mat(), cv::Mat());
+  const MotionConsistencyResult plain = RunOnPair(pair, options);
   EXPECT_EQ(plain.model, MotionModel::kFundamental);
 }
 

@@ -7,6 +7,7 @@
 
 #include "drvslam/core/error.h"
 #include "eval_test_util.h"
+#include "test_support/error_message.h"
 
 namespace drvslam {
 namespace {

@@ -56,6 +56,14 @@ class EvalCliTest : public ::testing::Test {
     return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
   }
 
+  // The command failed the way bad input must: exit status 2 and an "error: " line that names
+  // `what` (the file or option at fault).
+  static void ExpectErrorNaming(const CliRun& run, const std::string& what) {
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find(what), std::string::npos) << run.output;
+  }
+
   fs::path dir_;
   std::string gt_, est_;
 };
@@ -130,9 +138,7 @@ TEST_F(EvalCliTest, DatasetWithoutFrameListIsAnError) {
   const fs::path sequence = dir_ / "empty_sequence";
   fs::create_directories(sequence);
   const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --dataset " + sequence.string());
-  EXPECT_EQ(run.status, 2) << run.output;
-  EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("rgb.txt"), std::string::npos) << run.output;
+  ExpectErrorNaming(run, "rgb.txt");
 }
 
 TEST_F(EvalCliTest, FewerFramesThanMatchedPosesIsAnError) {
@@ -145,16 +151,12 @@ TEST_F(EvalCliTest, FewerFramesThanMatchedPosesIsAnError) {
 
 TEST_F(EvalCliTest, MissingFileIsAnError) {
   const CliRun run = RunCli("eval " + gt_ + " " + (dir_ / "no-such-file.txt").string());
-  EXPECT_EQ(run.status, 2) << run.output;
-  EXPECT_NE(run.output.find("error:"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("no-such-file.txt"), std::string::npos) << run.output;
+  ExpectErrorNaming(run, "no-such-file.txt");
 }
 
 TEST_F(EvalCliTest, NegativeMaxDiffIsAnError) {
   const CliRun run = RunCli("eval " + gt_ + " " + est_ + " --max-diff -1");
-  EXPECT_EQ(run.status, 2) << run.output;
-  EXPECT_NE(run.output.find("error:"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("--max-diff"), std::string::npos) << run.output;
+  ExpectErrorNaming(run, "--max-diff");
 }
 
 TEST_F(EvalCliTest, UnwritableJsonPathIsAnError) {

@@ -46,14 +46,4 @@ inline Trajectory InOtherWorld(const Trajectory& trajectory, const SE3& world_ch
   return moved;
 }
 
-// The message of the drvslam::Error `action` throws; empty when it throws none.
-inline std::string ErrorMessageOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 }  // namespace drvslam::testing

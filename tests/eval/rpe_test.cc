@@ -9,6 +9,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/eval/error_statistics.h"
 #include "eval_test_util.h"
+#include "test_support/error_message.h"
 
 namespace drvslam {
 namespace {

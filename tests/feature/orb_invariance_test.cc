@@ -84,6 +84,23 @@ Comparison Compare(const Features& a, const Features& b,
   return c;
 }
 
+// What a view change must keep: at least `min_repeatability` of the keypoints found again, at
+// least `min_matches` partners on the expected level whose descriptors stay close, and unrelated
+// descriptors far apart. Prints the figures as `<change> <photo>: ...`.
+void ExpectKeypointsAndDescriptorsSurvive(const Comparison& c, double min_repeatability,
+                                          std::size_t min_matches, const char* change,
+                                          const char* photo) {
+  EXPECT_GE(c.Repeatability(), min_repeatability);
+  ASSERT_GE(c.true_distances.size(), min_matches);
+  EXPECT_LT(Median(c.true_distances), 40.0);
+  // Steered BRIEF's bits lean towards the side of the intensity centroid, so unrelated
+  // descriptors differ in ~100 of 256 bits rather than 128.
+  EXPECT_GT(Median(c.random_distances), 90.0);
+  std::printf("%s %s: repeat %.3f (%d), matched %zu median %.1f random %.1f\n", change, photo,
+              c.Repeatability(), c.considered, c.true_distances.size(), Median(c.true_distances),
+              Median(c.random_distances));
+}
+
 class InvarianceTest : public test::PhotoParamTest {};
 
 TEST_P(InvarianceTest, RotationBy30Degrees) {
@@ -103,15 +120,7 @@ TEST_P(InvarianceTest, RotationBy30Degrees) {
   const Comparison c = Compare(a, b, map, inside, 0);
   ASSERT_GE(c.considered, 500);
   RecordProperty("repeatability", std::to_string(c.Repeatability()));
-  EXPECT_GE(c.Repeatability(), 0.5);
-  ASSERT_GE(c.true_distances.size(), 200u);
-  EXPECT_LT(Median(c.true_distances), 40.0);
-  // Steered BRIEF's bits lean towards the side of the intensity centroid, so unrelated
-  // descriptors differ in ~100 of 256 bits rather than 128.
-  EXPECT_GT(Median(c.random_distances), 90.0);
-  std::printf("rotation30 %s: repeat %.3f (%d), matched %zu median %.1f random %.1f\n", GetParam(),
-              c.Repeatability(), c.considered, c.true_distances.size(), Median(c.true_distances),
-              Median(c.random_distances));
+  ExpectKeypointsAndDescriptorsSurvive(c, 0.5, 200, "rotation30", GetParam());
 }
 
 TEST_P(InvarianceTest, ScaleChangeBy1Point2) {
@@ -128,15 +137,7 @@ TEST_P(InvarianceTest, ScaleChangeBy1Point2) {
   const auto inside = [&](cv::Point2f p) { return p.x > 40 && p.y > 40 && p.x < 600 && p.y < 440; };
   const Comparison c = Compare(a, b, map, inside, -1);
   ASSERT_GE(c.considered, 500);
-  EXPECT_GE(c.Repeatability(), 0.4);
-  ASSERT_GE(c.true_distances.size(), 100u);
-  EXPECT_LT(Median(c.true_distances), 40.0);
-  // Steered BRIEF's bits lean towards the side of the intensity centroid, so unrelated
-  // descriptors differ in ~100 of 256 bits rather than 128.
-  EXPECT_GT(Median(c.random_distances), 90.0);
-  std::printf("scale1.2 %s: repeat %.3f (%d), matched %zu median %.1f random %.1f\n", GetParam(),
-              c.Repeatability(), c.considered, c.true_distances.size(), Median(c.true_distances),
-              Median(c.random_distances));
+  ExpectKeypointsAndDescriptorsSurvive(c, 0.4, 100, "scale1.2", GetParam());
 }
 
 TEST_P(InvarianceTest, QuarterTurnAddsNinetyDegrees) {

@@ -12,18 +12,24 @@
 #include "drvslam/tools/runner/cutout_sequence.h"
 #include "drvslam/tools/runner/demo_runner.h"
 #include "synthesized_sequence.h"
+#include "test_support/error_message.h"
 
 namespace drvslam {
 namespace {
 
 namespace fs = std::filesystem;
 
+// The demo's defaults, `frames` frames a scenario, written into `out_dir`.
+DemoOptions DemoInto(const fs::path& out_dir, int frames) {
+  DemoOptions options;
+  options.out_dir = out_dir.string();
+  options.frames = frames;
+  return options;
+}
+
 TEST(DemoTest, RunsEachScenarioAndTheBaselineAndWritesTheReport) {
   const fs::path root = test::FreshTempFolder("drvslam_demo_test");
-  DemoOptions options;
-  options.out_dir = root.string();
-  options.frames = 40;
-  const std::vector<DemoResult> results = RunDemo(options);
+  const std::vector<DemoResult> results = RunDemo(DemoInto(root, 40));
 
   ASSERT_EQ(results.size(), 3u);
   EXPECT_EQ(results[0].run, "static_xyz");
@@ -123,9 +129,7 @@ TEST(DemoTest, ReportShowsMissingRpeAsNotAvailable) {
 // demo finishes instead of failing on the RPE error.
 TEST(DemoTest, RunShorterThanTheRpeDeltaIsEvaluatedWithoutRpe) {
   const fs::path root = test::FreshTempFolder("drvslam_demo_short_test");
-  DemoOptions options;
-  options.out_dir = root.string();
-  options.frames = 10;
+  DemoOptions options = DemoInto(root, 10);
   options.scenarios = {"static_xyz"};
   options.baseline = false;
   std::vector<DemoResult> results;
@@ -164,12 +168,8 @@ TEST(DemoTest, MissingModelIsAnErrorNamingItBeforeAnythingRuns) {
   DemoOptions options;
   options.out_dir = (root / "out").string();
   options.model = (root / "no_such_model.onnx").string();
-  try {
-    RunDemo(options);
-    FAIL() << "expected an Error";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(options.model), std::string::npos) << error.what();
-  }
+  const std::string message = testing::ErrorMessageOf([&] { RunDemo(options); });
+  EXPECT_NE(message.find(options.model), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(options.out_dir));
   fs::remove_all(root);
 }
@@ -177,13 +177,8 @@ TEST(DemoTest, MissingModelIsAnErrorNamingItBeforeAnythingRuns) {
 TEST(DemoTest, MissingPhotographForTheCutOutsIsAnErrorNamingIt) {
   CutoutSequenceOptions options;
   options.photo_dir = "/no/such/folder";
-  try {
-    CutoutPhotoPaths(options);
-    FAIL() << "expected an Error";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("/no/such/folder/basketball1.png"), std::string::npos)
-        << error.what();
-  }
+  const std::string message = testing::ErrorMessageOf([&] { CutoutPhotoPaths(options); });
+  EXPECT_NE(message.find("/no/such/folder/basketball1.png"), std::string::npos) << message;
 }
 
 TEST(DemoTest, ModelAddsCutOutRowsSegmentedByTheNetwork) {
@@ -193,9 +188,7 @@ TEST(DemoTest, ModelAddsCutOutRowsSegmentedByTheNetwork) {
     DRVSLAM_SKIP_IF_MISSING(testing::OpenCvData(photo), "opencv-doc photograph " + photo);
   }
   const fs::path root = test::FreshTempFolder("drvslam_demo_model_test");
-  DemoOptions options;
-  options.out_dir = root.string();
-  options.frames = 40;
+  DemoOptions options = DemoInto(root, 40);
   options.scenarios = {"walking_xyz"};
   options.model = model;
   const std::vector<DemoResult> results = RunDemo(options);

@@ -2,7 +2,6 @@
 // in sequential mode with the ground-truth segmenter, with dynamic handling on and off.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -13,37 +12,22 @@
 namespace drvslam {
 namespace {
 
-namespace fs = std::filesystem;
-
 constexpr std::size_t kFrames = 150;
 
-class DynamicIntegrationTest : public ::testing::Test {
+class DynamicIntegrationTest : public test::SequenceSuite<DynamicIntegrationTest> {
  protected:
   static void SetUpTestSuite() {
-    root_ = test::FreshTempFolder("drvslam_integration_dynamic");
-    const std::string failure = test::SynthesizeSequence(
-        root_, "--scenario walking_xyz --frames " + std::to_string(kFrames) + " --seed 1");
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder(
+        "drvslam_integration_dynamic",
+        "--scenario walking_xyz --frames " + std::to_string(kFrames) + " --seed 1", &root_));
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
 
   static RunSummary Run(const std::string& out_name, const std::string& dynamic) {
-    RunOptions options;
-    options.dataset = (root_ / "seq").string();
-    options.out_dir = (root_ / out_name).string();
-    options.sequential = true;
+    RunOptions options = SequentialRunOptions(out_name);
     options.dynamic.dynamic = dynamic;
     return RunSequence(options);
   }
-
-  static double Ate(const RunSummary& summary) {
-    return test::AteAgainstGroundTruth(root_ / "seq", summary.camera_trajectory_path).errors.rmse;
-  }
-
-  static fs::path root_;
 };
-
-fs::path DynamicIntegrationTest::root_;
 
 TEST_F(DynamicIntegrationTest, DynamicHandlingTracksEveryFrameAndBeatsPlainTracking) {
   // The sequence has masks/ and instances.txt: the ground-truth segmenter is the default.
@@ -53,8 +37,8 @@ TEST_F(DynamicIntegrationTest, DynamicHandlingTracksEveryFrameAndBeatsPlainTrack
   EXPECT_EQ(off.dynamic_setup, "segmenter gt, dynamic off");
   ASSERT_EQ(on.stats.frames, kFrames);
   EXPECT_GE(on.stats.tracked, kFrames * 99 / 100);
-  const double ate_on = Ate(on);
-  const double ate_off = Ate(off);
+  const double ate_on = AteRmse(on);
+  const double ate_off = AteRmse(off);
   EXPECT_LT(ate_on, 0.6 * ate_off) << "ATE on " << ate_on << " m, off " << ate_off << " m";
   EXPECT_LT(ate_on, 0.006) << "ATE on " << ate_on << " m";
 

@@ -18,6 +18,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
+#include "test_support/error_message.h"
 
 namespace drvslam {
 namespace {
@@ -33,13 +34,12 @@ struct AssociationLine {
   double stamp = 0.0;
 };
 
-class FrameFaultsTest : public testing::Test {
+class FrameFaultsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = test::FreshTempFolder("drvslam_frame_faults_test");
-    const std::string failure = test::SynthesizeSequence(
-        root_, "--scenario static_xyz --frames " + std::to_string(kFrames) + " --seed 3");
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder(
+        "drvslam_frame_faults_test",
+        "--scenario static_xyz --frames " + std::to_string(kFrames) + " --seed 3", &root_));
     std::ifstream in(Seq() / "associations.txt");
     std::string line;
     while (std::getline(in, line)) {
@@ -229,17 +229,12 @@ TEST_F(FrameFaultsTest, NaNAndNegativeDepthAreNoMeasurement) {
 
 TEST_F(FrameFaultsTest, TooManyBadFramesInARowStopTheRunAndKeepTheTrajectory) {
   for (std::size_t i = 4; i < 4 + kMaxConsecutiveRejectedFrames + 1; ++i) fs::remove(Rgb(i));
-  try {
-    RunSequence(Options());
-    FAIL() << "expected an Error";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(std::to_string(kMaxConsecutiveRejectedFrames + 1) + " frames in a row"),
-              std::string::npos)
-        << message;
-    EXPECT_NE(message.find(Rgb(4 + kMaxConsecutiveRejectedFrames).string()), std::string::npos)
-        << message;
-  }
+  const std::string message = testing::ErrorMessageOf([&] { RunSequence(Options()); });
+  EXPECT_NE(message.find(std::to_string(kMaxConsecutiveRejectedFrames + 1) + " frames in a row"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find(Rgb(4 + kMaxConsecutiveRejectedFrames).string()), std::string::npos)
+      << message;
   const nlohmann::json stats = Stats();
   EXPECT_EQ(stats["frames"].get<std::size_t>(), 4u);
   EXPECT_EQ(stats["frames_rejected"].get<std::size_t>(), kMaxConsecutiveRejectedFrames + 1);
@@ -250,13 +245,8 @@ TEST_F(FrameFaultsTest, ASequenceWithNoUsableFrameIsAnError) {
   for (std::size_t i = 0; i < 6; ++i) fs::remove(Depth(i));
   RunOptions options = Options();
   options.max_frames = 6;
-  try {
-    RunSequence(options);
-    FAIL() << "expected an Error";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("none of the 6 frames"), std::string::npos)
-        << error.what();
-  }
+  const std::string message = testing::ErrorMessageOf([&] { RunSequence(options); });
+  EXPECT_NE(message.find("none of the 6 frames"), std::string::npos) << message;
   EXPECT_EQ(Stats()["frames_rejected"].get<std::size_t>(), 6u);
 }
 

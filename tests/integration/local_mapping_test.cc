@@ -22,24 +22,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class LocalMappingTest : public ::testing::Test {
+class LocalMappingTest : public test::SequenceSuite<LocalMappingTest> {
  protected:
   static void SetUpTestSuite() {
-    root_ = test::FreshTempFolder("drvslam_integration_local_mapping");
-    const std::string failure =
-        test::SynthesizeSequence(root_, "--scenario static_xyz --frames 90 --seed 3");
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder(
+        "drvslam_integration_local_mapping", "--scenario static_xyz --frames 90 --seed 3", &root_));
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
 
   static RunSummary Run(const std::string& out_name, bool sequential) {
-    RunOptions options;
-    options.dataset = (root_ / "seq").string();
-    options.out_dir = (root_ / out_name).string();
+    RunOptions options = SequentialRunOptions(out_name);
     options.sequential = sequential;
     return RunSequence(options);
   }
 
+  // The suite's AteRmse, that besides checks that every estimated pose found its ground truth.
   static double AteRmse(const RunSummary& summary) {
     const Trajectory gt = ReadTumTrajectory((root_ / "seq" / "groundtruth.txt").string());
     const Trajectory est = ReadTumTrajectory(summary.camera_trajectory_path);
@@ -47,11 +43,7 @@ class LocalMappingTest : public ::testing::Test {
     EXPECT_EQ(ate.matched, est.size());
     return ate.errors.rmse;
   }
-
-  static fs::path root_;
 };
-
-fs::path LocalMappingTest::root_;
 
 TEST_F(LocalMappingTest, SequentialMappingTracksEveryFrameAccurately) {
   const RunSummary summary = Run("seq1", /*sequential=*/true);

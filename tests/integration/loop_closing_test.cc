@@ -47,7 +47,7 @@ Trajectory CircuitTrajectory() {
   return trajectory;
 }
 
-class LoopClosingTest : public ::testing::Test {
+class LoopClosingTest : public test::SequenceSuite<LoopClosingTest> {
  protected:
   static void SetUpTestSuite() {
     root_ = test::FreshTempFolder("drvslam_integration_loop_closing");
@@ -58,28 +58,17 @@ class LoopClosingTest : public ::testing::Test {
         "--scenario static_static --width 320 --height 240 --seed 2 --trajectory " + path.string());
     ASSERT_TRUE(failure.empty()) << failure;
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
 
   static RunSummary Run(const std::string& out_name, const std::string& loop,
                         std::size_t max_frames = 0, bool sequential = true) {
-    RunOptions options;
-    options.dataset = (root_ / "seq").string();
-    options.out_dir = (root_ / out_name).string();
+    RunOptions options = SequentialRunOptions(out_name);
     options.sequential = sequential;
     options.max_frames = max_frames;
     options.loop = loop;
     options.dense = "off";
     return RunSequence(options);
   }
-
-  static double AteRmse(const RunSummary& summary) {
-    return test::AteAgainstGroundTruth(root_ / "seq", summary.camera_trajectory_path).errors.rmse;
-  }
-
-  static fs::path root_;
 };
-
-fs::path LoopClosingTest::root_;
 
 TEST_F(LoopClosingTest, RevisitIsDetectedAndCorrectionReducesDrift) {
   const RunSummary with_loop = Run("on", "on");

@@ -28,6 +28,7 @@
 #include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"
 #include "test_support/cli_run.h"
+#include "test_support/error_message.h"
 
 namespace drvslam {
 namespace {
@@ -198,31 +199,19 @@ TEST(GeneratedFilesTest, ConfigurationDocsAndFullExampleAreUpToDate) {
 TEST(OptionChecksTest, BadValuesNameTheKeyTheValueAndTheRule) {
   DynamicOptions dynamic;
   dynamic.large_share = 1.5;
-  try {
-    dynamic.Check();
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "Dynamic.largeShare = 1.5 must be in [0, 1]");
-  }
+  EXPECT_EQ(testing::ErrorMessageOf([&] { dynamic.Check(); }),
+            "Dynamic.largeShare = 1.5 must be in [0, 1]");
   dynamic = DynamicOptions();
   dynamic.delta_moving = 0.8;
   EXPECT_THROW(dynamic.Check(), Error);
   OrbExtractorOptions orb;
   orb.min_th_fast = 21;
-  try {
-    orb.Check();
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "ORBextractor.minThFAST = 21 must not exceed ORBextractor.iniThFAST");
-  }
+  EXPECT_EQ(testing::ErrorMessageOf([&] { orb.Check(); }),
+            "ORBextractor.minThFAST = 21 must not exceed ORBextractor.iniThFAST");
   TrackerOptions tracker;
   tracker.min_inliers = 5;
-  try {
-    tracker.Check();
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "Tracking.minInliers = 5 must be at least 6");
-  }
+  EXPECT_EQ(testing::ErrorMessageOf([&] { tracker.Check(); }),
+            "Tracking.minInliers = 5 must be at least 6");
 }
 
 // ---- end to end, through the CLI ----

@@ -7,7 +7,6 @@
 // within 1.1x.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -17,50 +16,36 @@
 namespace drvslam {
 namespace {
 
-namespace fs = std::filesystem;
-
 constexpr std::size_t kFrames = 120;
 
-class RealCameraGuardTest : public ::testing::Test {
+class RealCameraGuardTest : public test::SequenceSuite<RealCameraGuardTest> {
  protected:
   static void SetUpTestSuite() {
-    root_ = test::FreshTempFolder("drvslam_integration_real_camera");
-    const std::string failure = test::SynthesizeSequence(
-        root_, "--scenario static_rpy --frames " + std::to_string(kFrames) +
-                   " --seed 1 --real-camera --camera-speed 3");
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder("drvslam_integration_real_camera",
+                                              "--scenario static_rpy --frames " +
+                                                  std::to_string(kFrames) +
+                                                  " --seed 1 --real-camera --camera-speed 3",
+                                              &root_));
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
 
   static RunSummary Run(const std::string& out_name, const std::string& segmenter,
                         const std::string& dynamic) {
-    RunOptions options;
-    options.dataset = (root_ / "seq").string();
-    options.out_dir = (root_ / out_name).string();
-    options.sequential = true;
+    RunOptions options = SequentialRunOptions(out_name);
     options.dynamic.segmenter = segmenter;
     options.dynamic.dynamic = dynamic;
     return RunSequence(options);
   }
-
-  static double Ate(const RunSummary& summary) {
-    return test::AteAgainstGroundTruth(root_ / "seq", summary.camera_trajectory_path).errors.rmse;
-  }
-
-  static fs::path root_;
 };
-
-fs::path RealCameraGuardTest::root_;
 
 TEST_F(RealCameraGuardTest, DynamicHandlingNeverTracksWorseThanOff) {
   const RunSummary off = Run("off", "none", "off");
   const RunSummary geometry = Run("geometry", "none", "on");
   const RunSummary oracle = Run("oracle", "gt", "on");
   ASSERT_EQ(off.stats.frames, kFrames);
-  const double ate_off = Ate(off);
+  const double ate_off = AteRmse(off);
   for (const RunSummary* on : {&geometry, &oracle}) {
     EXPECT_GE(on->stats.tracked, off.stats.tracked) << on->dynamic_setup;
-    const double ate_on = Ate(*on);
+    const double ate_on = AteRmse(*on);
     EXPECT_LE(ate_on, 1.1 * ate_off)
         << on->dynamic_setup << ": ATE on " << ate_on << " m, off " << ate_off << " m";
   }

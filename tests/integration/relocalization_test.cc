@@ -127,31 +127,26 @@ std::vector<double> WriteKidnapped(const fs::path& seq, const fs::path& out) {
   return stamps;
 }
 
-class RelocalizationTest : public ::testing::Test {
+class RelocalizationTest : public test::SequenceSuite<RelocalizationTest> {
  protected:
   static void SetUpTestSuite() {
-    root_ = test::FreshTempFolder("drvslam_integration_relocalization");
-    const std::string failure = test::SynthesizeSequence(
-        root_, "--scenario static_rpy --frames " + std::to_string(kSourceFrames) + " --seed 3");
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder(
+        "drvslam_integration_relocalization",
+        "--scenario static_rpy --frames " + std::to_string(kSourceFrames) + " --seed 3", &root_));
     stamps_ = WriteKidnapped(root_ / "seq", root_ / "kidnapped");
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
 
+  // Runs over the kidnapped sequence made from the synthesized one.
   static RunSummary Run(const std::string& out_name, const std::string& config) {
-    RunOptions options;
+    RunOptions options = SequentialRunOptions(out_name);
     options.dataset = (root_ / "kidnapped").string();
     options.config = config;
-    options.out_dir = (root_ / out_name).string();
-    options.sequential = true;
     return RunSequence(options);
   }
 
-  static fs::path root_;
   static std::vector<double> stamps_;
 };
 
-fs::path RelocalizationTest::root_;
 std::vector<double> RelocalizationTest::stamps_;
 
 TEST_F(RelocalizationTest, TracksAgainWithinTwoFramesOfTheViewReturning) {

@@ -30,11 +30,11 @@ constexpr std::size_t kBlankTo = 55;
 class ResetWhenLostTest : public testing::TestWithParam<bool> {
  protected:
   void SetUp() override {
-    root_ = test::FreshTempFolder("drvslam_reset_when_lost_test");
-    const std::string failure = test::SynthesizeSequence(
-        root_, "--scenario static_xyz --width 320 --height 240 --seed 4 --frames " +
-                   std::to_string(kFrames));
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder(
+        "drvslam_reset_when_lost_test",
+        "--scenario static_xyz --width 320 --height 240 --seed 4 --frames " +
+            std::to_string(kFrames),
+        &root_));
     std::ifstream in(root_ / "seq" / "associations.txt");
     std::string line;
     while (std::getline(in, line)) {

@@ -16,28 +16,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class StaticTrackingTest : public ::testing::Test {
+class StaticTrackingTest : public test::SequenceSuite<StaticTrackingTest> {
  protected:
   static void SetUpTestSuite() {
-    root_ = test::FreshTempFolder("drvslam_integration_static");
-    const std::string failure =
-        test::SynthesizeSequence(root_, "--scenario static_xyz --frames 90 --seed 3");
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder(
+        "drvslam_integration_static", "--scenario static_xyz --frames 90 --seed 3", &root_));
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
 
   static RunSummary Run(const std::string& out_name) {
-    RunOptions options;
-    options.dataset = (root_ / "seq").string();
-    options.out_dir = (root_ / out_name).string();
-    options.sequential = true;
-    return RunSequence(options);
+    return RunSequence(SequentialRunOptions(out_name));
   }
-
-  static fs::path root_;
 };
-
-fs::path StaticTrackingTest::root_;
 
 TEST_F(StaticTrackingTest, TracksEveryFrameWithinOneCentimetre) {
   const RunSummary summary = Run("run1");

@@ -34,6 +34,14 @@ std::string SynthesizeSequence(const fs::path& root, const std::string& synth_ar
   return command + "\n" + ReadFile(log);
 }
 
+::testing::AssertionResult SynthesizeInFreshFolder(const std::string& folder_name,
+                                                   const std::string& synth_args, fs::path* root) {
+  *root = FreshTempFolder(folder_name);
+  const std::string failure = SynthesizeSequence(*root, synth_args);
+  if (failure.empty()) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << failure;
+}
+
 AteResult AteAgainstGroundTruth(const fs::path& sequence, const std::string& trajectory_path) {
   const Trajectory truth = ReadTumTrajectory((sequence / "groundtruth.txt").string());
   return ComputeAte(truth, ReadTumTrajectory(trajectory_path), AteOptions{});

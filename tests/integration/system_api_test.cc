@@ -37,10 +37,9 @@ constexpr std::size_t kFrames = 20;
 class SystemApiTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = test::FreshTempFolder("drvslam_integration_system_api");
-    const std::string failure = test::SynthesizeSequence(
-        root_, "--scenario walking_xyz --frames " + std::to_string(kFrames) + " --seed 1");
-    ASSERT_TRUE(failure.empty()) << failure;
+    ASSERT_TRUE(test::SynthesizeInFreshFolder(
+        "drvslam_integration_system_api",
+        "--scenario walking_xyz --frames " + std::to_string(kFrames) + " --seed 1", &root_));
     sequence_ = (root_ / "seq").string();
     const SettingsFile file(sequence_ + "/settings.yaml");
     settings_ = LoadSettings(file);

@@ -4,7 +4,6 @@
 #include "drvslam/io/realtime_feeder.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +16,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/io/tum_dataset.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
@@ -33,15 +33,12 @@ std::string Stamp(double t) {
   return text;
 }
 
-class RealtimeFeederTest : public ::testing::Test {
+class RealtimeFeederTest : public testing::ScratchFolderTest {
  protected:
+  RealtimeFeederTest() : ScratchFolderTest({"rgb", "depth"}) {}
+
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("drvslam_realtime_feeder_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_ / "rgb");
-    fs::create_directories(dir_ / "depth");
+    ScratchFolderTest::SetUp();
     std::string rgb_list, depth_list;
     for (int k = 0; k < kFrames; ++k) {
       const std::string stamp = Stamp(100.0 + kPeriod * k);
@@ -56,7 +53,6 @@ class RealtimeFeederTest : public ::testing::Test {
     std::ofstream(dir_ / "rgb.txt") << rgb_list;
     std::ofstream(dir_ / "depth.txt") << depth_list;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Plays the whole sequence to a consumer that takes each frame at once; returns the frame
   // indices received (read from the colour) and whether the feeder preloaded. On a loaded
@@ -73,8 +69,6 @@ class RealtimeFeederTest : public ::testing::Test {
     EXPECT_EQ(received.size() + feeder.Skipped(), static_cast<std::size_t>(kFrames));
     return received;
   }
-
-  fs::path dir_;
 };
 
 // Frames arrive in order, each once, and the last one always arrives.

@@ -1,7 +1,6 @@
 #include "drvslam/io/trajectory_formats.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -13,6 +12,8 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/io/text_lines.h"
+#include "test_support/error_message.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
@@ -48,16 +49,8 @@ std::vector<std::string> Lines(const std::string& path) {
   return lines;
 }
 
-class TrajectoryFormatsTest : public ::testing::Test {
+class TrajectoryFormatsTest : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("drvslam_trajectory_formats_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
   std::string Write(const std::string& name, const std::string& body) const {
     std::ofstream(Path(name)) << body;
@@ -67,18 +60,12 @@ class TrajectoryFormatsTest : public ::testing::Test {
   // Reading `path` must fail with a message containing each of `needles`.
   static void ExpectError(const std::string& path, const TrajectoryReadOptions& options,
                           const std::vector<std::string>& needles) {
-    try {
-      ReadTrajectory(path, options);
-      FAIL() << "no error reading " << path;
-    } catch (const Error& error) {
-      for (const std::string& needle : needles) {
-        EXPECT_NE(std::string(error.what()).find(needle), std::string::npos)
-            << "'" << error.what() << "' lacks '" << needle << "'";
-      }
+    const std::string message = testing::ErrorMessageOf([&] { ReadTrajectory(path, options); });
+    for (const std::string& needle : needles) {
+      EXPECT_NE(message.find(needle), std::string::npos)
+          << "'" << message << "' lacks '" << needle << "'";
     }
   }
-
-  fs::path dir_;
 };
 
 void ExpectSamePoses(const Trajectory& written, const Trajectory& read) {
@@ -195,14 +182,9 @@ TEST_F(TrajectoryFormatsTest, DetectsByContent) {
 
 TEST_F(TrajectoryFormatsTest, UndetectableFileIsAnErrorNamingFileAndLine) {
   const std::string path = Write("odd.txt", "# header\n\n1 2 3 4 5\n");
-  try {
-    DetectTrajectoryFormat(path);
-    FAIL() << "no error";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(path + ":3: cannot tell the trajectory format"),
-              std::string::npos)
-        << error.what();
-  }
+  const std::string message = testing::ErrorMessageOf([&] { DetectTrajectoryFormat(path); });
+  EXPECT_NE(message.find(path + ":3: cannot tell the trajectory format"), std::string::npos)
+      << message;
 }
 
 TEST_F(TrajectoryFormatsTest, KittiWithoutTimesIsStampedWithTheFrameIndex) {
@@ -262,12 +244,8 @@ TEST_F(TrajectoryFormatsTest, BadEurocFilesAreErrorsNamingFileAndLine) {
 }
 
 TEST_F(TrajectoryFormatsTest, UnknownFormatNameIsAnErrorNamingTheOption) {
-  try {
-    ParseTrajectoryFormat("csv", "--trajectory-format");
-    FAIL() << "no error";
-  } catch (const Error& error) {
-    EXPECT_STREQ(error.what(), "--trajectory-format = 'csv' must be tum, kitti or euroc");
-  }
+  EXPECT_EQ(testing::ErrorMessageOf([] { ParseTrajectoryFormat("csv", "--trajectory-format"); }),
+            "--trajectory-format = 'csv' must be tum, kitti or euroc");
 }
 
 }  // namespace

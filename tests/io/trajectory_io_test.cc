@@ -1,7 +1,6 @@
 #include "drvslam/io/trajectory_io.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -13,7 +12,9 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
+#include "test_support/error_message.h"
 #include "test_support/missing_data.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
@@ -40,16 +41,8 @@ std::vector<std::string> DataLines(const std::string& path) {
   return lines;
 }
 
-class TrajectoryIoTest : public ::testing::Test {
+class TrajectoryIoTest : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("drvslam_trajectory_io_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Write(const std::string& body, const std::string& name = "traj.txt") {
     const std::string path = (dir_ / name).string();
     std::ofstream(path) << body;
@@ -58,19 +51,13 @@ class TrajectoryIoTest : public ::testing::Test {
 
   // Reading `body` must fail with a message naming the file, `line` (when > 0) and `needle`.
   void ExpectError(const std::string& body, int line, const std::string& needle) {
+    SCOPED_TRACE("trajectory:\n" + body);
     const std::string path = Write(body);
-    try {
-      ReadTumTrajectory(path);
-      FAIL() << "no error for:\n" << body;
-    } catch (const Error& e) {
-      const std::string message = e.what();
-      const std::string location = line > 0 ? path + ":" + std::to_string(line) + ":" : path;
-      EXPECT_NE(message.find(location), std::string::npos) << message << " lacks " << location;
-      EXPECT_NE(message.find(needle), std::string::npos) << message << " lacks " << needle;
-    }
+    const std::string message = testing::ErrorMessageOf([&] { ReadTumTrajectory(path); });
+    const std::string location = line > 0 ? path + ":" + std::to_string(line) + ":" : path;
+    EXPECT_NE(message.find(location), std::string::npos) << message << " lacks " << location;
+    EXPECT_NE(message.find(needle), std::string::npos) << message << " lacks " << needle;
   }
-
-  fs::path dir_;
 };
 
 constexpr char kPose[] = " 0.1 0.2 0.3 0 0 0 1\n";

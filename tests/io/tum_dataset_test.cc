@@ -1,7 +1,6 @@
 #include "drvslam/io/tum_dataset.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -16,6 +15,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/io/frame_fault.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
@@ -64,17 +64,9 @@ std::string Stamp(double t) {
 
 double MaxAbsDifference(const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF); }
 
-class TumDatasetTest : public ::testing::Test {
+class TumDatasetTest : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("drvslam_tum_dataset_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_ / "rgb");
-    fs::create_directories(dir_ / "depth");
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  TumDatasetTest() : ScratchFolderTest({"rgb", "depth"}) {}
 
   std::string Folder() const { return dir_.string(); }
   std::string PathOf(const std::string& relative) const { return (dir_ / relative).string(); }
@@ -142,8 +134,6 @@ class TumDatasetTest : public ::testing::Test {
       ADD_FAILURE() << "not a FrameError: " << e.what();
     }
   }
-
-  fs::path dir_;
 };
 
 TEST_F(TumDatasetTest, ReadsFramesAndConvertsDepthToMetresExactly) {

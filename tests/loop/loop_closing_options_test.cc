@@ -8,17 +8,13 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "test_support/error_message.h"
 
 namespace drvslam {
 namespace {
 
 std::string ErrorOf(const LoopClosingOptions& options) {
-  try {
-    options.Check();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testing::ErrorMessageOf([&] { options.Check(); });
 }
 
 TEST(LoopClosingOptionsTest, DefaultsAreValid) { EXPECT_EQ(ErrorOf(LoopClosingOptions{}), ""); }
@@ -67,14 +63,10 @@ TEST_F(LoopClosingOptionsFileTest, ReadsKeysAndKeepsDefaults) {
 
 TEST_F(LoopClosingOptionsFileTest, BadValueNamesFileAndKey) {
   Write("LoopClosing.minTotalMatches: 1\n");
-  try {
-    LoadLoopClosingOptions(SettingsFile(path_.string()));
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(path_.string()), std::string::npos) << message;
-    EXPECT_NE(message.find("LoopClosing.minTotalMatches"), std::string::npos) << message;
-  }
+  const std::string message =
+      testing::ErrorMessageOf([&] { LoadLoopClosingOptions(SettingsFile(path_.string())); });
+  EXPECT_NE(message.find(path_.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("LoopClosing.minTotalMatches"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "test_support/error_message.h"
 
 namespace drvslam {
 namespace {
@@ -26,12 +27,7 @@ fs::path WriteSettings(const std::string& name, const std::string& body) {
 }
 
 std::string ErrorOf(const RelocalizationOptions& options) {
-  try {
-    options.Check();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testing::ErrorMessageOf([&] { options.Check(); });
 }
 
 TEST(RelocalizationOptionsTest, DefaultsAreValid) {
@@ -77,14 +73,10 @@ TEST(RelocalizationOptionsTest, ReadsEveryKey) {
 
 TEST(RelocalizationOptionsTest, ABadFileValueNamesTheFileAndKey) {
   const fs::path path = WriteSettings("bad.yaml", "Relocalization.minInliers: 3\n");
-  try {
-    LoadRelocalizationOptions(SettingsFile(path.string()));
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-    EXPECT_NE(message.find("Relocalization.minInliers"), std::string::npos) << message;
-  }
+  const std::string message =
+      testing::ErrorMessageOf([&] { LoadRelocalizationOptions(SettingsFile(path.string())); });
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("Relocalization.minInliers"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -231,47 +231,38 @@ TEST_F(VocabularyIoTest, BinaryErrors) {
   const std::string good = ReadBytes(Path("good.bin"));
   ASSERT_EQ(good.size(), 36u + 6u * 45u);
 
-  std::string bad = good;
-  bad[0] = 'X';
-  ExpectBinaryError(bad, "offset 0: not a drvslam binary vocabulary (bad magic)");
+  // The good file with the byte at `offset` set to `value`.
+  const auto with_byte = [&good](std::size_t offset, char value) {
+    std::string bad = good;
+    bad[offset] = value;
+    return bad;
+  };
+  ExpectBinaryError(with_byte(0, 'X'), "offset 0: not a drvslam binary vocabulary (bad magic)");
   ExpectBinaryError(TinyText(), "offset 0: not a drvslam binary vocabulary (bad magic)");
   ExpectBinaryError("", "offset 0: not a drvslam binary vocabulary");
   ExpectBinaryError(good.substr(0, 20), "offset 20: truncated header (20 bytes, expected 36)");
-  bad = good;
-  bad[8] = 2;
-  ExpectBinaryError(bad, "offset 8: unsupported binary vocabulary version 2");
-  bad = good;
-  bad[12] = 1;
-  ExpectBinaryError(bad, "offset 12: branching factor k = 1 out of range");
-  bad = good;
-  bad[16] = 40;
-  ExpectBinaryError(bad, "offset 12: depth L = 40 out of range");
-  bad = good;
-  bad[20] = 1;
-  ExpectBinaryError(bad, "offset 20: unsupported scoring type 1");
-  bad = good;
-  bad[24] = 3;
-  ExpectBinaryError(bad, "offset 24: unsupported weighting type 3");
+  ExpectBinaryError(with_byte(8, 2), "offset 8: unsupported binary vocabulary version 2");
+  ExpectBinaryError(with_byte(12, 1), "offset 12: branching factor k = 1 out of range");
+  ExpectBinaryError(with_byte(16, 40), "offset 12: depth L = 40 out of range");
+  ExpectBinaryError(with_byte(20, 1), "offset 20: unsupported scoring type 1");
+  ExpectBinaryError(with_byte(24, 3), "offset 24: unsupported weighting type 3");
   ExpectBinaryError(good.substr(0, good.size() - 10),
                     "offset 296: truncated: the header promises 6 nodes but the file ends "
                     "after 5 complete ones");
   ExpectBinaryError(good + "x", "offset 306: 1 unexpected bytes after the last of 6 nodes");
-  bad = good;
-  bad[28] = 0;  // node count 0 with node bytes following
-  ExpectBinaryError(bad, "offset 36: 270 unexpected bytes");
-  ExpectBinaryError(bad.substr(0, 36), "the vocabulary has no nodes");
-  bad = good;
-  bad[36] = 9;  // parent of node 1
-  ExpectBinaryError(bad, "offset 36: parent id 9 of node 1 out of range [0, 1)");
-  bad = good;
+  const std::string no_nodes = with_byte(28, 0);  // node count 0 with node bytes following
+  ExpectBinaryError(no_nodes, "offset 36: 270 unexpected bytes");
+  ExpectBinaryError(no_nodes.substr(0, 36), "the vocabulary has no nodes");
+  ExpectBinaryError(with_byte(36, 9),  // parent of node 1
+                    "offset 36: parent id 9 of node 1 out of range [0, 1)");
+  std::string bad = good;
   bad[36] = bad[37] = bad[38] = bad[39] = static_cast<char>(0xFF);
   ExpectBinaryError(bad, "offset 36: parent id 4294967295 of node 1 out of range");
-  bad = good;
-  bad[40] = 7;  // is_leaf of node 1
-  ExpectBinaryError(bad, "offset 40: is_leaf byte 7 must be 0 or 1");
-  bad = good;
-  bad[36 + 4] = 1;  // node 1 becomes a leaf, yet nodes 3 and 4 name it as parent
-  ExpectBinaryError(bad, "offset 126: parent id 1 of node 3 is a leaf (offset 36)");
+  ExpectBinaryError(with_byte(40, 7),  // is_leaf of node 1
+                    "offset 40: is_leaf byte 7 must be 0 or 1");
+  // Node 1 becomes a leaf, yet nodes 3 and 4 name it as parent.
+  ExpectBinaryError(with_byte(36 + 4, 1),
+                    "offset 126: parent id 1 of node 3 is a leaf (offset 36)");
   bad = good;
   // Node 3's weight (record at 126, weight at +37) becomes a quiet NaN, little-endian.
   for (int i = 0; i < 6; ++i) bad[126 + 37 + i] = 0;

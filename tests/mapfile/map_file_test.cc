@@ -23,6 +23,7 @@
 #include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
 #include "drvslam/tracking/tracker_options.h"
+#include "test_support/error_message.h"
 #include "test_support/missing_data.h"
 
 namespace drvslam {
@@ -208,14 +209,9 @@ TEST_F(MapFileTest, TruncatedFileIsNamed) {
   WriteMapFile(path, SmallMap(Settings(), {1, 2, 3}));
   const std::string bytes = ReadBytes(path);
   WriteBytes(path, bytes.substr(0, bytes.size() / 2));
-  try {
-    ReadMapFile(path);
-    FAIL() << "a truncated file loaded";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(path), std::string::npos) << message;
-    EXPECT_NE(message.find("truncated map file"), std::string::npos) << message;
-  }
+  const std::string message = testing::ErrorMessageOf([&] { ReadMapFile(path); });
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find("truncated map file"), std::string::npos) << message;
   // Cut inside the header too.
   WriteBytes(path, bytes.substr(0, 12));
   EXPECT_THROW(ReadMapFile(path), Error);
@@ -227,14 +223,9 @@ TEST_F(MapFileTest, CorruptByteIsNamed) {
   std::string bytes = ReadBytes(path);
   bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
   WriteBytes(path, bytes);
-  try {
-    ReadMapFile(path);
-    FAIL() << "a corrupt file loaded";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(path), std::string::npos) << message;
-    EXPECT_NE(message.find("corrupt map file: checksum mismatch"), std::string::npos) << message;
-  }
+  const std::string message = testing::ErrorMessageOf([&] { ReadMapFile(path); });
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find("corrupt map file: checksum mismatch"), std::string::npos) << message;
 }
 
 TEST_F(MapFileTest, CorruptContentsBehindAValidChecksumAreNamed) {
@@ -243,13 +234,8 @@ TEST_F(MapFileTest, CorruptContentsBehindAValidChecksumAreNamed) {
   contents.points[0].observations[1].second = kKeypoints + 5;
   const std::string path = (folder_ / "inconsistent.bin").string();
   WriteMapFile(path, contents);
-  try {
-    ReadMapFile(path);
-    FAIL() << "an inconsistent file loaded";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(path + ": corrupt map file: map point 0"), std::string::npos) << message;
-  }
+  const std::string message = testing::ErrorMessageOf([&] { ReadMapFile(path); });
+  EXPECT_NE(message.find(path + ": corrupt map file: map point 0"), std::string::npos) << message;
 }
 
 TEST_F(MapFileTest, OtherFormatVersionIsNamed) {
@@ -258,17 +244,11 @@ TEST_F(MapFileTest, OtherFormatVersionIsNamed) {
   std::string bytes = ReadBytes(path);
   bytes[8] = static_cast<char>(kMapFileVersion + 1);  // the version follows the 8-byte magic
   WriteBytes(path, bytes);
-  try {
-    ReadMapFile(path);
-    FAIL() << "a file of another version loaded";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(
-        message.find(path + ": map file format version " + std::to_string(kMapFileVersion + 1) +
-                     "; this build reads version " + std::to_string(kMapFileVersion)),
-        std::string::npos)
-        << message;
-  }
+  const std::string message = testing::ErrorMessageOf([&] { ReadMapFile(path); });
+  EXPECT_NE(message.find(path + ": map file format version " + std::to_string(kMapFileVersion + 1) +
+                         "; this build reads version " + std::to_string(kMapFileVersion)),
+            std::string::npos)
+      << message;
 }
 
 TEST_F(MapFileTest, NotAMapFileIsNamed) {
@@ -349,14 +329,8 @@ TEST_F(MapFileTest, SavingToAnUnwritablePathNamesIt) {
   options.sequential = true;
   System system(Settings(), TrackerOptions(), options);
   const std::string path = (folder_ / "no_such_folder" / "map.bin").string();
-  try {
-    system.SaveMap(path);
-    FAIL() << "saved into a missing folder";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(path + ": cannot write the map file"),
-              std::string::npos)
-        << error.what();
-  }
+  const std::string message = testing::ErrorMessageOf([&] { system.SaveMap(path); });
+  EXPECT_NE(message.find(path + ": cannot write the map file"), std::string::npos) << message;
 }
 
 TEST(ByteCodecTest, Crc32OfTheStandardCheckString) {

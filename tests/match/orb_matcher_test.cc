@@ -100,6 +100,15 @@ class OrbMatcherTest : public ::testing::Test {
     return {correct, wrong};
   }
 
+  // `matches` (what the search reported) are all in `frame`: over 90 % of its keypoints matched to
+  // their true landmark and none to another.
+  void ExpectMostMatchesTrueAndNoneWrong(const Frame& frame, int matches) const {
+    const auto [correct, wrong] = Score(frame);
+    EXPECT_EQ(matches, correct + wrong);
+    EXPECT_GT(correct, 0.9 * frame.Size());
+    EXPECT_EQ(wrong, 0);
+  }
+
   std::mt19937 rng_{7};
   std::shared_ptr<const SensorGeometry> geometry_;
   Scene scene_;
@@ -115,10 +124,7 @@ TEST_F(OrbMatcherTest, ProjectionFromLastFrameFindsTheTrueCorrespondences) {
   Frame second(1, 0.033, second_features_);
   second.SetPose(second_pose_);
   const int matches = OrbMatcher().SearchByProjection(second, *first_, 7.0);
-  const auto [correct, wrong] = Score(second);
-  EXPECT_EQ(matches, correct + wrong);
-  EXPECT_GT(correct, 0.9 * second.Size());
-  EXPECT_EQ(wrong, 0);
+  ExpectMostMatchesTrueAndNoneWrong(second, matches);
 }
 
 TEST_F(OrbMatcherTest, ProjectionFailsGracefullyFromAWrongPose) {
@@ -153,10 +159,7 @@ TEST_F(OrbMatcherTest, LocalMapProjectionMatchesVisiblePoints) {
 TEST_F(OrbMatcherTest, DescriptorMatchingAgainstKeyFrameNeedsNoPose) {
   Frame second(1, 0.033, second_features_);
   const int matches = OrbMatcher().SearchByDescriptors(*keyframe_, second, 0.7);
-  const auto [correct, wrong] = Score(second);
-  EXPECT_EQ(matches, correct + wrong);
-  EXPECT_GT(correct, 0.9 * second.Size());
-  EXPECT_EQ(wrong, 0);
+  ExpectMostMatchesTrueAndNoneWrong(second, matches);
 }
 
 TEST_F(OrbMatcherTest, FrustumTestRejectsPointsBehindAndOutside) {

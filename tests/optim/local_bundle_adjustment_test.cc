@@ -123,6 +123,17 @@ SE3 Perturb(const SE3& pose, std::mt19937& rng, double translation, double rotat
   return SE3::Exp(twist) * pose;
 }
 
+// The problem's keyframe 0 fixed and every other one's starting pose perturbed, in order, with
+// `seed`'s random numbers.
+void FixTheFirstAndPerturbTheRest(Scene* scene, unsigned seed, double translation,
+                                  double rotation) {
+  scene->problem.keyframe_fixed[0] = true;
+  std::mt19937 rng(seed);
+  for (std::size_t k = 1; k < scene->poses.size(); ++k) {
+    scene->problem.keyframe_poses[k] = Perturb(scene->poses[k], rng, translation, rotation);
+  }
+}
+
 double CenterError(const SE3& a, const SE3& b) {
   return (a.Inverse().Translation() - b.Inverse().Translation()).norm();
 }
@@ -232,11 +243,7 @@ TEST(LocalBundleAdjustmentTest, ARaisedFlagStopsBeforeSolving) {
 TEST(LocalBundleAdjustmentTest, InterruptReturnsPromptlyAndKeepsProgress) {
   // Large enough that a full solve takes a while on any machine.
   Scene scene = MakeScene(30, 1500, true);
-  scene.problem.keyframe_fixed[0] = true;
-  std::mt19937 rng(2);
-  for (int k = 1; k < 30; ++k) {
-    scene.problem.keyframe_poses[k] = Perturb(scene.poses[k], rng, 0.05, 0.02);
-  }
+  FixTheFirstAndPerturbTheRest(&scene, 2, 0.05, 0.02);
   LocalBundleAdjustmentOptions options;
   options.first_pass_iterations = 50;
   options.second_pass_iterations = 50;
@@ -279,11 +286,7 @@ TEST(LocalBundleAdjustmentTest, InterruptReturnsPromptlyAndKeepsProgress) {
 
 TEST(LocalBundleAdjustmentTest, IsDeterministic) {
   Scene scene = MakeScene(5, 100, true);
-  scene.problem.keyframe_fixed[0] = true;
-  std::mt19937 rng(9);
-  for (int k = 1; k < 5; ++k) {
-    scene.problem.keyframe_poses[k] = Perturb(scene.poses[k], rng, 0.03, 0.01);
-  }
+  FixTheFirstAndPerturbTheRest(&scene, 9, 0.03, 0.01);
   const auto a = SolveLocalBundleAdjustment(CameraOptions{}, scene.problem);
   const auto b = SolveLocalBundleAdjustment(CameraOptions{}, scene.problem);
   for (int k = 0; k < 5; ++k) {

@@ -22,6 +22,25 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+AsyncSegmenterOptions RealtimeOptions() {
+  AsyncSegmenterOptions options;
+  options.drop_when_busy = true;
+  return options;
+}
+
+// A segmenter whose fake network is held closed with frame 1 submitted, so that a test decides
+// what is queued before the network goes on (fake->Open()).
+struct HeldRealtimeSegmenter {
+  explicit HeldRealtimeSegmenter(const AsyncSegmenterOptions& options = RealtimeOptions())
+      : segmenter(fake, options) {
+    fake->Close();
+    segmenter.Submit(1, 0.0, kImage);
+  }
+
+  std::shared_ptr<FakeSegmenter> fake = std::make_shared<FakeSegmenter>();
+  AsyncSegmenter segmenter;
+};
+
 TEST(AsyncSegmenterTest, ReturnsEachFramesOwnResultOnAWorkerThread) {
   auto fake = std::make_shared<FakeSegmenter>();
   AsyncSegmenter segmenter(fake);
@@ -86,13 +105,10 @@ TEST(AsyncSegmenterTest, ErrorsReachTheWaiterAndOtherFramesGoOn) {
 }
 
 TEST(AsyncSegmenterTest, BusyWorkerDropsQueuedFramesInRealtimeMode) {
-  auto fake = std::make_shared<FakeSegmenter>();
-  AsyncSegmenterOptions options;
-  options.drop_when_busy = true;
+  AsyncSegmenterOptions options = RealtimeOptions();
   options.queue_capacity = 1;
-  AsyncSegmenter segmenter(fake, options);
-  fake->Close();
-  segmenter.Submit(1, 0.0, kImage);
+  HeldRealtimeSegmenter held(options);
+  auto& [fake, segmenter] = held;
   fake->AwaitStarted(1);  // frame 1 is being segmented, the queue is empty
   const auto start = std::chrono::steady_clock::now();
   for (std::size_t i = 2; i <= 5; ++i) segmenter.Submit(i, 0.0, kImage);
@@ -118,12 +134,8 @@ TEST(AsyncSegmenterTest, BusyWorkerDropsQueuedFramesInRealtimeMode) {
 TEST(AsyncSegmenterTest, FreeNetworkAlwaysTakesTheNewestFrameInRealtimeMode) {
   // The default queue capacity (2) is ignored at sensor rate: one frame waits at most, so the
   // worker goes from frame 1 straight to the newest, 5 (with a 2-deep queue it took 4 first).
-  auto fake = std::make_shared<FakeSegmenter>();
-  AsyncSegmenterOptions options;
-  options.drop_when_busy = true;
-  AsyncSegmenter segmenter(fake, options);
-  fake->Close();
-  segmenter.Submit(1, 0.0, kImage);
+  HeldRealtimeSegmenter held;
+  auto& [fake, segmenter] = held;
   fake->AwaitStarted(1);
   for (std::size_t i = 2; i <= 5; ++i) segmenter.Submit(i, 0.0, kImage);
   fake->Open();
@@ -133,12 +145,8 @@ TEST(AsyncSegmenterTest, FreeNetworkAlwaysTakesTheNewestFrameInRealtimeMode) {
 }
 
 TEST(AsyncSegmenterTest, WaitForGivesUpAtItsDeadline) {
-  auto fake = std::make_shared<FakeSegmenter>();
-  AsyncSegmenterOptions options;
-  options.drop_when_busy = true;
-  AsyncSegmenter segmenter(fake, options);
-  fake->Close();
-  segmenter.Submit(1, 0.0, kImage);
+  HeldRealtimeSegmenter held;
+  auto& [fake, segmenter] = held;
   const auto start = std::chrono::steady_clock::now();
   EXPECT_EQ(segmenter.WaitFor(1, 50.0), nullptr);
   const double waited = MillisecondsSince(start);
@@ -155,12 +163,8 @@ TEST(AsyncSegmenterTest, WaitForGivesUpAtItsDeadline) {
 // is the rest of the network's recent pass time for a frame it is on, nothing for one another
 // frame is ahead of.
 TEST(AsyncSegmenterTest, ExpectedWaitFollowsTheRecentPassTime) {
-  auto fake = std::make_shared<FakeSegmenter>();
-  AsyncSegmenterOptions options;
-  options.drop_when_busy = true;
-  AsyncSegmenter segmenter(fake, options);
-  fake->Close();
-  segmenter.Submit(1, 0.0, kImage);
+  HeldRealtimeSegmenter held;
+  auto& [fake, segmenter] = held;
   fake->AwaitStarted(1);
   // No pass has finished yet: no estimate, so nothing to wait for beyond the caller's bound.
   EXPECT_EQ(segmenter.ExpectedWaitMs(1), 0.0);

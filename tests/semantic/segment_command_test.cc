@@ -12,6 +12,7 @@
 
 #include "test_data.h"
 #include "test_support/cli_run.h"
+#include "test_support/scratch_folder.h"
 
 namespace drvslam {
 namespace {
@@ -21,12 +22,7 @@ using drvslam::testing::RunCli;
 
 namespace fs = std::filesystem;
 
-class SegmentCommandTest : public ::testing::Test {
- protected:
-  void SetUp() override { dir_ = testing::FreshTempDir("segment_command"); }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class SegmentCommandTest : public testing::ScratchFolderTest {};
 
 TEST_F(SegmentCommandTest, WritesJsonOverlaysAndPersonCutouts) {
   const std::string model = testing::SharedModel("yolov8n-seg-320x256.onnx");

@@ -4,9 +4,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <initializer_list>
+#include <opencv2/core.hpp>
+#include <vector>
 
 #include "drvslam/core/camera.h"
 #include "drvslam/synth/rasterizer.h"
+#include "drvslam/synth/texture.h"
 
 namespace drvslam::synth::testing {
 
@@ -26,6 +30,13 @@ inline RasterOptions Unlit() {
   RasterOptions options;
   options.ambient = 1.0;
   return options;
+}
+
+// One flat 8x8 texture per BGR colour: texture i is colours[i] all over.
+inline std::vector<Texture> SolidTextures(std::initializer_list<cv::Scalar> colours) {
+  std::vector<Texture> textures;
+  for (const cv::Scalar& colour : colours) textures.emplace_back(cv::Mat(8, 8, CV_8UC3, colour));
+  return textures;
 }
 
 // A w x h rectangle facing the camera at the camera-frame centre `c` (camera at the origin

@@ -16,14 +16,11 @@ namespace drvslam::synth {
 namespace {
 
 using testing::AddFacingRect;
+using testing::SolidTextures;
 using testing::TestCamera;
 using testing::Unlit;
 
-std::vector<Texture> PlainTextures() {
-  std::vector<Texture> textures;
-  textures.emplace_back(cv::Mat(8, 8, CV_8UC3, cv::Scalar(40, 80, 120)));
-  return textures;
-}
+std::vector<Texture> PlainTextures() { return SolidTextures({cv::Scalar(40, 80, 120)}); }
 
 int CountId(const cv::Mat& ids, int id) { return cv::countNonZero(ids == id); }
 

@@ -22,16 +22,14 @@ namespace {
 
 using testing::AddFacingRect;
 using testing::ReadFileBytes;
+using testing::SolidTextures;
 using testing::TestCamera;
 using testing::TestFolder;
 using testing::Unlit;
 
 // Texture 0 dark grey, texture 1 white.
 std::vector<Texture> TwoTextures() {
-  std::vector<Texture> textures;
-  textures.emplace_back(cv::Mat(8, 8, CV_8UC3, cv::Scalar(20, 20, 20)));
-  textures.emplace_back(cv::Mat(8, 8, CV_8UC3, cv::Scalar(230, 230, 230)));
-  return textures;
+  return SolidTextures({cv::Scalar(20, 20, 20), cv::Scalar(230, 230, 230)});
 }
 
 // A dark wall at z = 4 behind everything.
@@ -85,16 +83,24 @@ SynthOptions SmallOptions(const std::string& scenario, int frames) {
 
 // The wall and the scene at each exposure offset, rendered by a plain renderer into *plain and by
 // one with `effects` into *with_effects.
-void RenderPlainAndWith(const RealCameraOptions& effects, const TriangleList& wall,
-                        const ShutterRenderer::SceneAt& scene, RenderBuffers* plain,
-                        RenderBuffers* with_effects) {
+void RenderPlainAndWith(const RealCameraOptions& effects, const ShutterRenderer::SceneAt& scene,
+                        RenderBuffers* plain, RenderBuffers* with_effects) {
+  const TriangleList wall = Wall();
   ShutterRenderer(TestCamera(), RealCameraOptions(), Unlit())
       .Render(wall, TwoTextures(), scene, plain);
   ShutterRenderer(TestCamera(), effects, Unlit()).Render(wall, TwoTextures(), scene, with_effects);
 }
 
+// A still camera and a `width` x `height` m rectangle (instance 1) at 2 m depth, moving right at
+// `speed` m/s: at the exposure offset t it is centred speed * t m right of the optical axis.
+ShutterRenderer::SceneAt MovingRectangle(double speed, double width, double height) {
+  return [=](double offset, SE3* T_cw, TriangleList* out) {
+    *T_cw = SE3();
+    AddFacingRect({speed * offset, 0.0, 2.0}, width, height, 3, 1, out);
+  };
+}
+
 TEST(RealCameraTest, BlurOfAStillSceneChangesNothing) {
-  const TriangleList wall = Wall();
   TriangleList movers;
   AddFacingRect({0.1, -0.05, 2.0}, 0.6, 0.4, 3, 1, &movers);
   const auto still = [&](double, SE3* T_cw, TriangleList* out) {
@@ -105,7 +111,7 @@ TEST(RealCameraTest, BlurOfAStillSceneChangesNothing) {
   blur.blur_exposure = 0.05;
   blur.blur_samples = 6;  // even: depth and masks then come from an extra centre render
   RenderBuffers a, b;
-  RenderPlainAndWith(blur, wall, still, &a, &b);
+  RenderPlainAndWith(blur, still, &a, &b);
   EXPECT_EQ(cv::norm(a.bgr, b.bgr, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(a.depth, b.depth, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(a.instance, b.instance, cv::NORM_INF), 0.0);
@@ -114,16 +120,11 @@ TEST(RealCameraTest, BlurOfAStillSceneChangesNothing) {
 TEST(RealCameraTest, BlurSmearsAMovingActorOverItsPathAndKeepsTheMaskAtTheCentre) {
   // A white rectangle moving right at 1 m/s at 2 m depth: 250 px/s on the image, so a 40 ms
   // exposure smears its edges over 10 px. The camera stands still.
-  const TriangleList wall = Wall();
-  const auto moving = [&](double offset, SE3* T_cw, TriangleList* out) {
-    *T_cw = SE3();
-    AddFacingRect({1.0 * offset, 0.0, 2.0}, 0.6, 0.4, 3, 1, out);
-  };
   RealCameraOptions blur;
   blur.blur_exposure = 0.04;
   blur.blur_samples = 9;
   RenderBuffers a, b;
-  RenderPlainAndWith(blur, wall, moving, &a, &b);
+  RenderPlainAndWith(blur, MovingRectangle(1.0, 0.6, 0.4), &a, &b);
   // Masks and depth are those of the exposure's centre.
   EXPECT_EQ(cv::norm(a.instance, b.instance, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(a.depth, b.depth, cv::NORM_INF), 0.0);
@@ -195,17 +196,13 @@ TEST(RealCameraTest, RollingShutterShearsAMovingBarByTheReadout) {
   // A tall bar moving right at 2 m/s at 2 m depth: 500 px/s. Over a 40 ms readout its left
   // edge moves 20 px from the top row to the bottom one, and sits where the plain render puts
   // it in the middle of the image.
-  const TriangleList wall = Wall();
-  const auto moving = [&](double offset, SE3* T_cw, TriangleList* out) {
-    *T_cw = SE3();
-    AddFacingRect({2.0 * offset, 0.0, 2.0}, 0.4, 3.0, 3, 1, out);
-  };
   RealCameraOptions options;
   options.rolling_shutter_readout = 0.04;
   options.rolling_shutter_steps = 480;
   const ShutterRenderer rolling(TestCamera(), options, Unlit());
+  const ShutterRenderer::SceneAt moving = MovingRectangle(2.0, 0.4, 3.0);
   RenderBuffers a, b;
-  RenderPlainAndWith(options, wall, moving, &a, &b);
+  RenderPlainAndWith(options, moving, &a, &b);
   const std::vector<int> still = LeftEdges(a.instance, 3), sheared = LeftEdges(b.instance, 3);
   // Continuous edge: 270.25 + 500 px/s * row offset; the first pixel centre right of it.
   for (const int row : {0, 60, 120, 239, 240, 300, 479}) {
@@ -225,7 +222,7 @@ TEST(RealCameraTest, RollingShutterShearsAMovingBarByTheReadout) {
   options.depth_global_shutter = true;
   const ShutterRenderer global(TestCamera(), options, Unlit());
   RenderBuffers c;
-  global.Render(wall, TwoTextures(), moving, &c);
+  global.Render(Wall(), TwoTextures(), moving, &c);
   EXPECT_EQ(cv::norm(c.depth, a.depth, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(c.instance, b.instance, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(c.bgr, b.bgr, cv::NORM_INF), 0.0);
@@ -393,19 +390,24 @@ TEST(RealCameraTest, IntrinsicsErrorIsWhatSettingsStateAndLeavesImagesAlone) {
 
 // --- Lens distortion -----------------------------------------------------------------------
 
+// `camera`'s distortion coefficients as cv::projectPoints takes them: k1, k2, p1, p2, k3.
+cv::Mat OpenCvCoefficients(const CameraOptions& camera) {
+  return (cv::Mat_<double>(1, 5) << camera.k1, camera.k2, camera.p1, camera.p2, camera.k3);
+}
+
+// `camera`'s intrinsic matrix as cv::projectPoints takes it.
+cv::Mat OpenCvCameraMatrix(const CameraOptions& camera) {
+  return (cv::Mat_<double>(3, 3) << camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+}
+
 TEST(RealCameraTest, DistortionModelIsOpenCvsAndInvertsExactly) {
   RealCameraOptions options;
   options.SetDistortion("fr1");
-  CameraOptions camera = TestCamera();
-  camera.k1 = options.k1;
-  camera.k2 = options.k2;
-  camera.p1 = options.p1;
-  camera.p2 = options.p2;
-  camera.k3 = options.k3;
+  // TestCamera() with the fr1 lens: the options ask for no calibration error.
+  const CameraOptions camera = StatedCamera(TestCamera(), options);
   const LensDistortion lens = LensDistortion::Of(camera);
   const cv::Mat K = (cv::Mat_<double>(3, 3) << 1, 0, 0, 0, 1, 0, 0, 0, 1);
-  const cv::Mat coefficients =
-      (cv::Mat_<double>(1, 5) << camera.k1, camera.k2, camera.p1, camera.p2, camera.k3);
+  const cv::Mat coefficients = OpenCvCoefficients(camera);
   std::vector<cv::Point3d> points;
   for (double x = -0.6; x <= 0.6; x += 0.15) {
     for (double y = -0.45; y <= 0.45; y += 0.15) points.emplace_back(x, y, 1.0);
@@ -435,12 +437,8 @@ TEST(RealCameraTest, DistortionModelIsOpenCvsAndInvertsExactly) {
 TEST(RealCameraTest, DistortionMapSendsEveryPixelAlongItsRay) {
   RealCameraOptions options;
   options.SetDistortion("fr1");
-  CameraOptions camera = TestCamera();
-  camera.k1 = options.k1;
-  camera.k2 = options.k2;
-  camera.p1 = options.p1;
-  camera.p2 = options.p2;
-  camera.k3 = options.k3;
+  // TestCamera() with the fr1 lens: the options ask for no calibration error.
+  const CameraOptions camera = StatedCamera(TestCamera(), options);
   const DistortionMap map(camera);
   const CameraOptions& canvas = map.Canvas();
   EXPECT_DOUBLE_EQ(canvas.fx, camera.fx);
@@ -455,10 +453,8 @@ TEST(RealCameraTest, DistortionMapSendsEveryPixelAlongItsRay) {
       pixels.emplace_back(x, y);
     }
   }
-  const cv::Mat K =
-      (cv::Mat_<double>(3, 3) << camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
-  const cv::Mat coefficients =
-      (cv::Mat_<double>(1, 5) << camera.k1, camera.k2, camera.p1, camera.p2, camera.k3);
+  const cv::Mat K = OpenCvCameraMatrix(camera);
+  const cv::Mat coefficients = OpenCvCoefficients(camera);
   std::vector<cv::Point2d> projected;
   cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, coefficients, projected);
   double worst = 0.0, moved = 0.0;
@@ -483,12 +479,8 @@ TEST(RealCameraTest, DistortionMapSendsEveryPixelAlongItsRay) {
 TEST(RealCameraTest, DistortedRenderPutsKnownPointsWhereProjectPointsDoes) {
   RealCameraOptions options;
   options.SetDistortion("fr1");
-  CameraOptions camera = TestCamera();
-  camera.k1 = options.k1;
-  camera.k2 = options.k2;
-  camera.p1 = options.p1;
-  camera.p2 = options.p2;
-  camera.k3 = options.k3;
+  // TestCamera() with the fr1 lens: the options ask for no calibration error.
+  const CameraOptions camera = StatedCamera(TestCamera(), options);
   // 2 cm white squares at 2 m over the whole view, corners included (where fr1 moves points by
   // more than 10 px), each with its own instance id.
   std::vector<cv::Point3d> centres;
@@ -504,10 +496,8 @@ TEST(RealCameraTest, DistortedRenderPutsKnownPointsWhereProjectPointsDoes) {
   const auto still = [&](double, SE3* T_cw, TriangleList*) { *T_cw = SE3(); };
   RenderBuffers out;
   renderer.Render(squares, TwoTextures(), still, &out);
-  const cv::Mat K =
-      (cv::Mat_<double>(3, 3) << camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
-  const cv::Mat coefficients =
-      (cv::Mat_<double>(1, 5) << camera.k1, camera.k2, camera.p1, camera.p2, camera.k3);
+  const cv::Mat K = OpenCvCameraMatrix(camera);
+  const cv::Mat coefficients = OpenCvCoefficients(camera);
   std::vector<cv::Point2d> projected;
   cv::projectPoints(centres, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, coefficients, projected);
   double largest_shift = 0.0;

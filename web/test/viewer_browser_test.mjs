@@ -70,49 +70,42 @@ async function openBrowser() {
   return { browser, page, errors };
 }
 
+// Runs in the page (page.evaluate sends its text, so it may use nothing from this module): the
+// grey-level variance of the PNG `base64` when given, else of the canvas with id `canvasId`.
+async function greyVarianceInPage({ base64, canvasId }) {
+  let source;
+  if (base64) {
+    source = new Image();
+    source.src = `data:image/png;base64,${base64}`;
+    await source.decode();
+  } else {
+    source = document.getElementById(canvasId);
+  }
+  const canvas = document.createElement('canvas');
+  canvas.width = source.width;
+  canvas.height = source.height;
+  const g = canvas.getContext('2d');
+  g.drawImage(source, 0, 0);
+  const { data } = g.getImageData(0, 0, canvas.width, canvas.height);
+  let sum = 0, sum2 = 0;
+  const n = data.length / 4;
+  for (let i = 0; i < data.length; i += 4) {
+    const v = (data[i] + data[i + 1] + data[i + 2]) / 3;
+    sum += v;
+    sum2 += v * v;
+  }
+  return sum2 / n - (sum / n) ** 2;
+}
+
 // The screenshot's grey-level variance, computed in the page from the PNG (no image library).
 async function screenshotVariance(page, file) {
   const png = await page.screenshot({ path: file });
-  return page.evaluate(async (base64) => {
-    const image = new Image();
-    image.src = `data:image/png;base64,${base64}`;
-    await image.decode();
-    const canvas = document.createElement('canvas');
-    canvas.width = image.width;
-    canvas.height = image.height;
-    const g = canvas.getContext('2d');
-    g.drawImage(image, 0, 0);
-    const { data } = g.getImageData(0, 0, image.width, image.height);
-    let sum = 0, sum2 = 0;
-    const n = data.length / 4;
-    for (let i = 0; i < data.length; i += 4) {
-      const v = (data[i] + data[i + 1] + data[i + 2]) / 3;
-      sum += v;
-      sum2 += v * v;
-    }
-    return sum2 / n - (sum / n) ** 2;
-  }, png.toString('base64'));
+  return page.evaluate(greyVarianceInPage, { base64: png.toString('base64') });
 }
 
 // Variance of the 3-D canvas alone (WebGL, preserveDrawingBuffer), so the map itself is drawn.
 async function mapCanvasVariance(page) {
-  return page.evaluate(() => {
-    const source = document.getElementById('view3d');
-    const canvas = document.createElement('canvas');
-    canvas.width = source.width;
-    canvas.height = source.height;
-    const g = canvas.getContext('2d');
-    g.drawImage(source, 0, 0);
-    const { data } = g.getImageData(0, 0, canvas.width, canvas.height);
-    let sum = 0, sum2 = 0;
-    const n = data.length / 4;
-    for (let i = 0; i < data.length; i += 4) {
-      const v = (data[i] + data[i + 1] + data[i + 2]) / 3;
-      sum += v;
-      sum2 += v * v;
-    }
-    return sum2 / n - (sum / n) ** 2;
-  });
+  return page.evaluate(greyVarianceInPage, { canvasId: 'view3d' });
 }
 
 // The checks of a finished run, whether served (view) or from report.html.
