@@ -62,7 +62,15 @@ def solve3(a, b):
 
 
 def kib_per_frame_beyond_map(rows):
-    """Frame coefficient c of rss = a + b * keyframes + c * frame (None when degenerate)."""
+    """Frame coefficient c of rss = a + b * keyframes + c * frame; while the map holds still
+    (one keyframe count throughout) the slope of rss = a + c * frame."""
+    if len({row["keyframes"] for row in rows}) == 1:
+        n = len(rows)
+        mean_frame = sum(row["frame"] for row in rows) / n
+        mean_rss = sum(row["rss_kib"] for row in rows) / n
+        spread = sum((row["frame"] - mean_frame) ** 2 for row in rows)
+        return "RSS = a + c*frame (the map held still)", sum(
+            (row["frame"] - mean_frame) * (row["rss_kib"] - mean_rss) for row in rows) / spread
     normal = [[0.0] * 3 for _ in range(3)]
     right = [0.0] * 3
     for row in rows:
@@ -72,7 +80,7 @@ def kib_per_frame_beyond_map(rows):
             for j in range(3):
                 normal[i][j] += x[i] * x[j]
     solution = solve3(normal, right)
-    return None if solution is None else solution[2]
+    return "RSS = a + b*keyframes + c*frame", None if solution is None else solution[2]
 
 
 def main():
@@ -106,12 +114,12 @@ def main():
         return
     first, last = after[0], after[-1]
     span = last["frame"] - first["frame"]
-    coefficient = kib_per_frame_beyond_map(after)
+    formula, coefficient = kib_per_frame_beyond_map(after)
     print(f"after warm-up (frame {first['frame']} -> {last['frame']}, {span} frames): "
           f"keyframes {first['keyframes']} -> {last['keyframes']}, map points "
           f"{first['map_points']} -> {last['map_points']}, RSS {first['rss_kib'] / 1024:.1f} -> "
           f"{last['rss_kib'] / 1024:.1f} MiB ({(last['rss_kib'] - first['rss_kib']) / span:.3f} "
-          f"KiB/frame overall); fit RSS = a + b*keyframes + c*frame: c = "
+          f"KiB/frame overall); fit {formula}: c = "
           + ("n/a" if coefficient is None else f"{coefficient:.3f}")
           + " KiB per frame beyond the map's growth")
 
