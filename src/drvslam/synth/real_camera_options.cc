@@ -105,6 +105,11 @@ CameraOptions StatedCamera(const CameraOptions& truth, const RealCameraOptions& 
   stated.bf *= scale;  // the same baseline at the stated focal length
   stated.cx += options.principal_point_error_x;
   stated.cy += options.principal_point_error_y;
+  stated.k1 = options.k1;
+  stated.k2 = options.k2;
+  stated.p1 = options.p1;
+  stated.p2 = options.p2;
+  stated.k3 = options.k3;
   return stated;
 }
 

@@ -71,8 +71,7 @@ struct RealCameraOptions {
 // and 1 px down of colour, fx and fy stated 3 % too large, TUM fr1's lens distortion.
 RealCameraOptions HandheldCamera();
 
-// The camera the settings file states: `truth` with the calibration error applied (its lens
-// distortion, which SynthOptions::Camera() takes from `options`, is stated as it is).
+// The camera the settings file states: `truth` with the calibration error applied.
 CameraOptions StatedCamera(const CameraOptions& truth, const RealCameraOptions& options);
 
 }  // namespace drvslam::synth
