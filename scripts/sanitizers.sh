@@ -13,13 +13,14 @@
 # trained again. Binaries run two at a time. Every report of every process, the CLI runs the
 # tests start included, goes to a log file: any report fails the job (exit status 1) and is
 # printed. Undefined behaviour stops the program (-fno-sanitize-recover). Third-party false
-# positives are suppressed in scripts/sanitizers/*.supp, each with its reason.
+# positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason (none so far).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 
 kind="${1:-}"
 run_prefix=()
+export ASAN_OPTIONS="${ASAN_OPTIONS:-}" UBSAN_OPTIONS="${UBSAN_OPTIONS:-}" TSAN_OPTIONS="${TSAN_OPTIONS:-}"
 shift || true
 case "$kind" in
   address)
@@ -51,7 +52,6 @@ case "$kind" in
     )
     export ASAN_OPTIONS="detect_leaks=1:log_path=REPORTS/asan:${ASAN_OPTIONS:-}"
     export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=REPORTS/ubsan:${UBSAN_OPTIONS:-}"
-    export LSAN_OPTIONS="suppressions=$root/scripts/sanitizers/lsan.supp:${LSAN_OPTIONS:-}"
     ;;
   thread)
     build=build-tsan
@@ -64,7 +64,7 @@ case "$kind" in
       loop_closing_test:LoopCloserTest.*
       core_test:BoundedQueueTest.*:LatestFrameSlotTest.*
     )
-    export TSAN_OPTIONS="second_deadlock_stack=1:log_path=REPORTS/tsan:suppressions=$root/scripts/sanitizers/tsan.supp:${TSAN_OPTIONS:-}"
+    export TSAN_OPTIONS="second_deadlock_stack=1:log_path=REPORTS/tsan:${TSAN_OPTIONS:-}"
     # Without address randomization: GCC 12's TSan does not know the memory layout kernels with
     # more mmap randomization bits give ("unexpected memory mapping").
     run_prefix=(setarch "$(uname -m)" -R)
@@ -74,6 +74,14 @@ case "$kind" in
     exit 2
     ;;
 esac
+# Third-party false positives (uninstrumented OpenCV/TBB, libgomp, Ceres), one per line with a
+# comment saying why the report is not ours: scripts/sanitizers/{lsan,tsan}.supp when needed.
+for tool in lsan tsan; do
+  if [ -s "scripts/sanitizers/$tool.supp" ]; then
+    variable="${tool^^}_OPTIONS"
+    export "$variable=suppressions=$root/scripts/sanitizers/$tool.supp:${!variable:-}"
+  fi
+done
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=("${default_targets[@]}")
 
