@@ -14,6 +14,8 @@
 # tests start included, goes to a log file: any report fails the job (exit status 1) and is
 # printed. Undefined behaviour stops the program (-fno-sanitize-recover). Third-party false
 # positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason (none so far).
+# Options given in ASAN_OPTIONS, UBSAN_OPTIONS or TSAN_OPTIONS come last and win (for example
+# ASAN_OPTIONS=detect_leaks=0 to look past a known leak).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
