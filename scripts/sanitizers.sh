@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sanitizer jobs CI runs (.ci/run, after the tests and the demo).
+# The sanitizer jobs (not yet run by .ci/run: the README says why).
 #   scripts/sanitizers.sh address [TEST_TARGET[:GTEST_FILTER]]...   ASan + UBSan, in build-asan/
 #   scripts/sanitizers.sh thread  [TEST_TARGET[:GTEST_FILTER]]...   TSan, in build-tsan/
 # Without targets, the default set below: ASan+UBSan over the unit and integration tests, TSan
