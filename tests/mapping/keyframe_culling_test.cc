@@ -19,6 +19,22 @@ void BuildHover(SyntheticScene& scene, SyntheticMap& map, double near_z, double 
   }
 }
 
+TEST(KeyFrameGraphTest, ConnectedKeyFramesAreFreedWithTheirMap) {
+  std::vector<std::weak_ptr<KeyFrame>> watched;
+  {
+    SyntheticScene scene;
+    SyntheticMap map;
+    BuildHover(scene, map, 1.5, 2.5);
+    for (const auto& keyframe : map.keyframes) {
+      // Every keyframe sees the others: each holds links to its neighbours.
+      ASSERT_EQ(keyframe->CovisiblesByWeight().size(), map.keyframes.size() - 1);
+      watched.push_back(keyframe);
+    }
+  }
+  // Links between keyframes must not keep them alive once the map and its owners are gone.
+  for (std::size_t k = 0; k < watched.size(); ++k) EXPECT_TRUE(watched[k].expired()) << k;
+}
+
 TEST(KeyFrameCullingTest, RedundantKeyFramesGoButNeverTheOrigin) {
   SyntheticScene scene;
   SyntheticMap map;

@@ -1,6 +1,7 @@
 #include "drvslam/map/keyframe.h"
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "drvslam/map/map_point.h"
@@ -178,19 +179,24 @@ void KeyFrame::SortConnections() {
   ordered_weights_.clear();
   for (auto& [weight, keyframe] : by_weight) {
     ordered_weights_.push_back(weight);
-    ordered_connections_.push_back(std::move(keyframe));
+    ordered_connections_.push_back(keyframe);
   }
 }
 
 std::vector<std::shared_ptr<KeyFrame>> KeyFrame::CovisiblesByWeight() const {
-  std::lock_guard<std::mutex> lock(connections_mutex_);
-  return ordered_connections_;
+  return BestCovisibles(std::numeric_limits<std::size_t>::max());
 }
 
 std::vector<std::shared_ptr<KeyFrame>> KeyFrame::BestCovisibles(std::size_t n) const {
   std::lock_guard<std::mutex> lock(connections_mutex_);
-  const std::size_t count = std::min(n, ordered_connections_.size());
-  return {ordered_connections_.begin(), ordered_connections_.begin() + count};
+  std::vector<std::shared_ptr<KeyFrame>> best;
+  best.reserve(std::min(n, ordered_connections_.size()));
+  // A keyframe nobody owns any more (its map was cleared) is passed over.
+  for (const std::weak_ptr<KeyFrame>& link : ordered_connections_) {
+    if (best.size() >= n) break;
+    if (auto keyframe = link.lock()) best.push_back(std::move(keyframe));
+  }
+  return best;
 }
 
 int KeyFrame::Weight(long keyframe_id) const {

@@ -117,7 +117,9 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
     int weight;
   };
   std::map<long, Connection> connections_;  // keyed by keyframe id
-  std::vector<std::shared_ptr<KeyFrame>> ordered_connections_;
+  // Weak, like every link between keyframes: connected keyframes holding each other would keep
+  // every keyframe of a cleared or destroyed map alive.
+  std::vector<std::weak_ptr<KeyFrame>> ordered_connections_;
   std::vector<int> ordered_weights_;
   std::weak_ptr<KeyFrame> parent_;
   std::map<long, std::weak_ptr<KeyFrame>> children_;
