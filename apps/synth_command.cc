@@ -174,6 +174,9 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
   // Real-camera effects.
   synth::RealCameraOptions& real = args->real;
   const synth::RealCameraOptions handheld = synth::HandheldCamera();
+  // The overrides live inside *args: they point at it rather than own it (owning would be a
+  // cycle, and the arguments would never be freed).
+  SynthArguments* const self = args.get();
   const auto real_option = [&](const std::string& name, auto* value, const std::string& help,
                                auto apply) {
     CLI::Option* option = cmd->add_option(name, *value, help)->capture_default_str();
@@ -183,20 +186,20 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
               "motion blur: exposure time in seconds, centred on each row's time, camera and "
               "actors moving (0 = off; --real-camera: " +
                   Short(handheld.blur_exposure) + ")",
-              [args](synth::RealCameraOptions& r) { r.blur_exposure = args->real.blur_exposure; });
+              [self](synth::RealCameraOptions& r) { r.blur_exposure = self->real.blur_exposure; });
   real_option("--blur-samples", &real.blur_samples,
               "renders averaged per blurred frame (odd: the middle one gives depth and masks)",
-              [args](synth::RealCameraOptions& r) { r.blur_samples = args->real.blur_samples; });
+              [self](synth::RealCameraOptions& r) { r.blur_samples = self->real.blur_samples; });
   real_option("--rolling-shutter", &real.rolling_shutter_readout,
               "rolling shutter: readout time in seconds from the top row to the bottom one; the "
               "timestamp and ground truth belong to the image's middle (0 = off; --real-camera: " +
                   Short(handheld.rolling_shutter_readout) + ")",
-              [args](synth::RealCameraOptions& r) {
-                r.rolling_shutter_readout = args->real.rolling_shutter_readout;
+              [self](synth::RealCameraOptions& r) {
+                r.rolling_shutter_readout = self->real.rolling_shutter_readout;
               });
   real_option("--rolling-shutter-steps", &real.rolling_shutter_steps,
-              "bands of rows that share one exposure time", [args](synth::RealCameraOptions& r) {
-                r.rolling_shutter_steps = args->real.rolling_shutter_steps;
+              "bands of rows that share one exposure time", [self](synth::RealCameraOptions& r) {
+                r.rolling_shutter_steps = self->real.rolling_shutter_steps;
               });
   args->overrides.emplace_back(
       cmd->add_option("--depth-global-shutter", real.depth_global_shutter,
@@ -205,33 +208,33 @@ const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
                       "against the colour rows; 0: depth follows the colour rows (a Kinect v1; "
                       "--real-camera: 1)")
           ->capture_default_str(),
-      [args](synth::RealCameraOptions& r) {
-        r.depth_global_shutter = args->real.depth_global_shutter;
+      [self](synth::RealCameraOptions& r) {
+        r.depth_global_shutter = self->real.depth_global_shutter;
       });
   real_option("--depth-shift", &args->depth_shift,
               "DX,DY: depth misregistered against colour by this many pixels (sub-pixel "
               "allowed; depth at (x, y) is the true depth at (x - DX, y - DY); masks stay with "
               "colour; --real-camera: 1.5,1)",
-              [args](synth::RealCameraOptions& r) {
+              [self](synth::RealCameraOptions& r) {
                 std::tie(r.depth_shift_x, r.depth_shift_y) =
-                    ParsePair("--depth-shift", args->depth_shift);
+                    ParsePair("--depth-shift", self->depth_shift);
               });
   real_option(
       "--intrinsics-error", &real.intrinsics_error,
       "settings.yaml states fx, fy (and bf) this fraction larger than the truth "
       "(0.03 = 3 %; --real-camera: 0.03); Synth.TrueFx.. keep the truth",
-      [args](synth::RealCameraOptions& r) { r.intrinsics_error = args->real.intrinsics_error; });
+      [self](synth::RealCameraOptions& r) { r.intrinsics_error = self->real.intrinsics_error; });
   real_option("--principal-point-error", &args->principal_point_error,
               "DX,DY: settings.yaml states cx, cy moved by this many pixels",
-              [args](synth::RealCameraOptions& r) {
+              [self](synth::RealCameraOptions& r) {
                 std::tie(r.principal_point_error_x, r.principal_point_error_y) =
-                    ParsePair("--principal-point-error", args->principal_point_error);
+                    ParsePair("--principal-point-error", self->principal_point_error);
               });
   real_option("--distortion", &args->distortion,
               "lens distortion k1,k2,p1,p2,k3 (OpenCV radial-tangential; missing ones are 0) or "
               "fr1 / fr2 (the TUM calibrations): images are rendered through it and "
               "settings.yaml states it as Camera.k1..k3 (--real-camera: fr1)",
-              [args](synth::RealCameraOptions& r) { r.SetDistortion(args->distortion); });
+              [self](synth::RealCameraOptions& r) { r.SetDistortion(self->distortion); });
   cmd->add_flag("--real-camera", args->real_camera,
                 "a quickly moved hand-held real camera: --blur-exposure 0.015 --rolling-shutter "
                 "0.025 --depth-global-shutter 1 --depth-shift 1.5,1 --intrinsics-error 0.03 "
