@@ -229,14 +229,7 @@ DenseCloud BackProject(const DenseFrame& frame, const PixelRoles& roles, PixelRo
       if (roles_row[x] != wanted) continue;
       const float z = depth[x];
       if (!InRange(z, options)) continue;
-      DensePoint p;
-      p.position = {ray[x][0] * z, ray[x][1] * z, z};
-      p.b = colour[x][0];
-      p.g = colour[x][1];
-      p.r = colour[x][2];
-      p.label = labels[x];
-      p.track = tracks[x];
-      cloud.push_back(p);
+      cloud.push_back(PixelPoint(ray[x], z, colour[x], labels[x], tracks[x]));
     }
   }
   return cloud;

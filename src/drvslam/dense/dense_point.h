@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 namespace drvslam {
@@ -16,5 +17,19 @@ struct DensePoint {
 };
 
 using DenseCloud = std::vector<DensePoint>;
+
+// The point a pixel sees: its camera ray (x/z, y/z) at depth z, with the pixel's colour (BGR),
+// label and track.
+inline DensePoint PixelPoint(const cv::Vec2f& ray, float z, const cv::Vec3b& bgr, int16_t label,
+                             int32_t track) {
+  DensePoint p;
+  p.position = {ray[0] * z, ray[1] * z, z};
+  p.b = bgr[0];
+  p.g = bgr[1];
+  p.r = bgr[2];
+  p.label = label;
+  p.track = track;
+  return p;
+}
 
 }  // namespace drvslam

@@ -175,14 +175,7 @@ SurfaceSamples BackProjectSurfaces(const DenseFrame& frame, const PixelRoles& ro
     for (int x = 0; x < depth.cols; ++x) {
       if (!u[x]) continue;
       const float z = d[x];
-      DensePoint p;
-      p.position = {ray[x][0] * z, ray[x][1] * z, z};
-      p.b = colour[x][0];
-      p.g = colour[x][1];
-      p.r = colour[x][2];
-      p.label = labels[x];
-      p.track = tracks[x];
-      samples.points.push_back(p);
+      samples.points.push_back(PixelPoint(ray[x], z, colour[x], labels[x], tracks[x]));
       samples.weights.push_back(cosine[x] * DepthNoiseWeight(z));
     }
   }
