@@ -46,5 +46,43 @@ TEST(SideWorkerTest, AnExceptionReachesTheCallerAndTheWorkerServesAgain) {
   worker.ForEach(0, [](int, int) { FAIL() << "no item to run"; });
 }
 
+TEST(SideWorkerTest, StartedItemsRunBesideTheCallerAndFinishWaitsForThem) {
+  SideWorker worker;
+  int helper_runs = 0;
+  for (int round = 0; round < 20; ++round) {
+    std::atomic<int> runs{0};
+    int thread_of = -1;
+    worker.Start(1, [&](int, int thread) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      thread_of = thread;
+      ++runs;
+    });
+    EXPECT_TRUE(worker.Started());
+    // The caller's own work meanwhile.
+    std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    worker.Finish();
+    EXPECT_FALSE(worker.Started());
+    ASSERT_EQ(runs.load(), 1) << "round " << round;
+    ASSERT_TRUE(thread_of == 0 || thread_of == 1);
+    helper_runs += thread_of;
+  }
+  // The caller slept 3 ms before Finish: the helper normally took the item.
+  EXPECT_GT(helper_runs, 0);
+  worker.Finish();  // without a Start: nothing to do
+}
+
+TEST(SideWorkerTest, FinishRethrowsAStartedItemsExceptionAndMisuseIsRefused) {
+  SideWorker worker;
+  worker.Start(1, [](int, int) { throw std::runtime_error("flow failed"); });
+  EXPECT_THROW(worker.Start(1, [](int, int) {}), std::logic_error);
+  EXPECT_THROW(worker.ForEach(1, [](int, int) {}), std::logic_error);
+  EXPECT_THROW(worker.Finish(), std::runtime_error);
+  // Served again afterwards.
+  std::atomic<int> runs{0};
+  worker.Start(3, [&](int, int) { ++runs; });
+  worker.Finish();
+  EXPECT_EQ(runs.load(), 3);
+}
+
 }  // namespace
 }  // namespace drvslam

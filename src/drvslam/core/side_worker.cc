@@ -1,5 +1,7 @@
 #include "drvslam/core/side_worker.h"
 
+#include <stdexcept>
+
 namespace drvslam {
 
 SideWorker::SideWorker() : thread_([this] { Loop(); }) {}
@@ -25,17 +27,37 @@ std::exception_ptr SideWorker::TakeItems(int thread) {
   return nullptr;
 }
 
-void SideWorker::ForEach(int count, const std::function<void(int, int)>& item) {
-  if (count <= 0) return;
+void SideWorker::Offer(const std::function<void(int, int)>* item, int count) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    item_ = &item;
+    item_ = item;
     count_ = count;
     next_.store(0);
     offered_ = true;
     helper_error_ = nullptr;
   }
   changed_.notify_all();
+}
+
+void SideWorker::ForEach(int count, const std::function<void(int, int)>& item) {
+  if (count <= 0) return;
+  if (started_) throw std::logic_error("SideWorker::ForEach called between Start and Finish");
+  Offer(&item, count);
+  started_ = true;
+  Finish();
+}
+
+void SideWorker::Start(int count, std::function<void(int, int)> item) {
+  if (started_) throw std::logic_error("SideWorker::Start called twice without Finish");
+  if (count <= 0) return;
+  started_item_ = std::move(item);
+  Offer(&started_item_, count);
+  started_ = true;
+}
+
+void SideWorker::Finish() {
+  if (!started_) return;
+  started_ = false;
   const std::exception_ptr error = TakeItems(0);
   std::exception_ptr helper_error;
   {
@@ -46,6 +68,7 @@ void SideWorker::ForEach(int count, const std::function<void(int, int)>& item) {
     helper_error = helper_error_;
     item_ = nullptr;
   }
+  started_item_ = nullptr;
   if (error) std::rethrow_exception(error);
   if (helper_error) std::rethrow_exception(helper_error);
 }

@@ -138,6 +138,9 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
     stats_.segmenter = "none";
   }
   stats_.realtime = config_.realtime;
+  if (config_.options.flow_thread && !config_.sequential) {
+    flow_helper_ = std::make_unique<SideWorker>();
+  }
   if (!config_.debug_dir.empty()) {
     std::error_code error;
     std::filesystem::create_directories(config_.debug_dir, error);
@@ -162,7 +165,15 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
   }
 }
 
-DynamicFrontEnd::~DynamicFrontEnd() = default;
+DynamicFrontEnd::~DynamicFrontEnd() {
+  // A frame that failed between BeginFrame and Filter may have left its flow job running.
+  if (flow_helper_) {
+    try {
+      flow_helper_->Finish();
+    } catch (...) {
+    }
+  }
+}
 
 void DynamicFrontEnd::Record(const char* stage, double ms) {
   if (timings_ != nullptr) timings_->Record(stage, ms);
@@ -172,6 +183,10 @@ int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr, bool keyfr
   if (begun_) throw Error("DynamicFrontEnd: BeginFrame called twice without Filter");
   begun_ = true;
   if (async_) async_->Submit(next_index_, timestamp, bgr);
+  // The Mat header by value: the job may still run after the caller's argument is gone (a
+  // frame that fails before Filter; the destructor then finishes it).
+  if (flow_helper_)
+    flow_helper_->Start(1, [this, bgr](int, int) { started_flow_ = ComputeFlow(bgr); });
   report_ = DynamicFrameReport();
   report_.frame_index = next_index_;
   report_.timestamp = timestamp;
@@ -358,19 +373,14 @@ DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Fra
   if (!carry_objects_) segmentation = MasksFor(frame.Timestamp(), bgr);
 
   // The flow tracks first (masks carried by object need them), the tests once the masks are
-  // known.
+  // known. The stage's time is the tracking thread's: waiting for the flow (or computing it)
+  // and the tests.
   Stopwatch consistency_watch;
-  cv::Mat gray;
-  if (bgr.type() == CV_8UC3) {
-    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
-  } else {
-    gray = bgr;
-  }
-  regions.flow = BuildFlowImage(gray, o);
-  report_.sharpness = blur_.Observe(gray);
-  const bool has_previous = previous_ && previous_->flow.size == regions.size;
-  std::vector<FlowTrack> tracks;
-  if (has_previous) tracks = TrackPreviousFeatures(regions.flow);
+  FrameFlow flow = FinishFlow(bgr);
+  regions.flow = std::move(flow.flow);
+  report_.sharpness = flow.sharpness;
+  const bool has_previous = flow.has_previous;
+  std::vector<FlowTrack> tracks = std::move(flow.tracks);
   double consistency_ms = consistency_watch.ElapsedMs();
   if (carry_objects_) segmentation = CarriedMasksFor(frame.Timestamp(), regions.size, tracks);
   regions.instances = std::move(segmentation.instances);
@@ -391,6 +401,30 @@ DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Fra
   consistency_ms += test_watch.ElapsedMs();
   Record("motion_consistency", consistency_ms);
   return regions;
+}
+
+DynamicFrontEnd::FrameFlow DynamicFrontEnd::ComputeFlow(const cv::Mat& bgr) {
+  const Stopwatch watch;
+  FrameFlow out;
+  cv::Mat gray;
+  if (bgr.type() == CV_8UC3) {
+    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  } else {
+    gray = bgr;
+  }
+  out.flow = BuildFlowImage(gray, config_.options);
+  out.sharpness = blur_.Observe(gray);
+  out.has_previous = previous_ && previous_->flow.size == out.flow.size;
+  if (out.has_previous) out.tracks = TrackPreviousFeatures(out.flow);
+  out.ms = watch.ElapsedMs();
+  return out;
+}
+
+DynamicFrontEnd::FrameFlow DynamicFrontEnd::FinishFlow(const cv::Mat& bgr) {
+  if (!flow_helper_) return ComputeFlow(bgr);
+  flow_helper_->Finish();
+  Record("flow", started_flow_.ms);
+  return std::move(started_flow_);
 }
 
 std::vector<FlowTrack> DynamicFrontEnd::TrackPreviousFeatures(const FlowImage& flow) {

@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "drvslam/core/side_worker.h"
 #include "drvslam/core/timing.h"
 #include "drvslam/dynamic/dynamic_options.h"
 #include "drvslam/dynamic/frame_sharpness.h"
@@ -192,6 +193,16 @@ class DynamicFrontEnd {
     cv::Mat depth;      // CV_32FC1 metres (may be empty)
   };
 
+  // The image's optical flow and the previous frame's features tracked into it: step 1's first
+  // half, which needs only the image and the previous frame.
+  struct FrameFlow {
+    FlowImage flow;
+    SharpnessJudgement sharpness;
+    bool has_previous = false;  // tracks exist (a previous frame of the same size)
+    std::vector<FlowTrack> tracks;
+    double ms = 0.0;  // its time, on whichever thread ran it
+  };
+
   // What step 1 leaves for the later ones.
   struct MotionRegions {
     cv::Size size;                         // the image's
@@ -213,6 +224,13 @@ class DynamicFrontEnd {
   // the previous frame, and their test against the camera's motion outside the masks of
   // classes that can move. Fills the report's sharpness.
   MotionRegions ConstrainMotionRegions(const Frame& frame, const cv::Mat& bgr);
+  // The flow half of step 1 (FrameFlow). Runs on flow_helper_ while the frame's features are
+  // extracted, else on the tracking thread: it touches only the previous frame and blur_, which
+  // nothing else uses until FinishFlow.
+  FrameFlow ComputeFlow(const cv::Mat& bgr);
+  // The frame's FrameFlow: the helper's (waiting for it, or running it here when the helper
+  // got no core) or computed now.
+  FrameFlow FinishFlow(const cv::Mat& bgr);
   // The previous frame's features tracked into `flow`: every one on an object, the background
   // thinned evenly to Dynamic.maxFlowPoints.
   std::vector<FlowTrack> TrackPreviousFeatures(const FlowImage& flow);
@@ -289,6 +307,10 @@ class DynamicFrontEnd {
   std::ofstream frames_csv_;  // one row per frame: sharpness, unlabelled verdict, removal
   DynamicFrameReport report_;
   DynamicStats stats_;
+  // Dynamic.flowThread (not when sequential): step 1's flow beside ORB extraction. Declared
+  // last: its thread is joined before anything the flow touches goes.
+  FrameFlow started_flow_;  // written by the helper's job, read after Finish
+  std::unique_ptr<SideWorker> flow_helper_;
 };
 
 }  // namespace drvslam

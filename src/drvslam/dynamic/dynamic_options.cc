@@ -28,6 +28,9 @@ const OptionTable<DynamicOptions>& DynamicOptionTable() {
              "Flow pyramid levels above the image.")
         .Int("maxFlowPoints", &D::max_flow_points, Bounds::In(8, 100000),
              "Previous-frame features tracked at most.")
+        .Bool("flowThread", &D::flow_thread,
+              "Flow pyramid and tracks on a helper thread beside extraction (not when "
+              "sequential).")
         .Real("flowCheck", &D::flow_check, Bounds::AtLeast(0).Note("0 = off"),
               "Forward-backward check: a track whose backward flow misses by more is dropped.")
         .Int("borderMargin", &D::border_margin, Bounds::In(0, 1000).Note("pixels"),
