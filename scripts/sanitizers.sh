@@ -67,6 +67,17 @@ case "$kind" in
       core_test:BoundedQueueTest.*:LatestFrameSlotTest.*
     )
     export TSAN_OPTIONS="second_deadlock_stack=1:log_path=REPORTS/tsan:${TSAN_OPTIONS:-}"
+    # The integration tests render their synthetic sequences with `drvslam synth` first: with the
+    # release CLI when there is one, as rendering is not what this job tests and takes minutes
+    # under TSan (a 90-frame sequence: 11 s released, over 4 min here).
+    if [ -x build/bin/drvslam ]; then export DRVSLAM_TEST_SYNTH_CLI="$root/build/bin/drvslam"; fi
+    # OpenCV's cv::parallel_for_ (the renderer's) runs on this system's OpenCV on uninstrumented
+    # TBB, which orders its workers with atomics TSan does not see: the caller reading what a
+    # worker wrote in a finished loop is reported as a race (170 reports per instrumented `synth`
+    # run, each with a TBB worker). With one thread parallel_for_ runs its body on the caller,
+    # so every access TSan checks is ordered by our own, instrumented, synchronization. Threaded
+    # SLAM runs set OpenCV to one thread themselves (ApplyOpenCvThreadBudget).
+    export OPENCV_FOR_THREADS_NUM=1
     # Without address randomization: GCC 12's TSan does not know the memory layout kernels with
     # more mmap randomization bits give ("unexpected memory mapping").
     run_prefix=(setarch "$(uname -m)" -R)
