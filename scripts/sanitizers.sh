@@ -4,8 +4,8 @@
 #   scripts/sanitizers.sh thread  [TEST_TARGET[:GTEST_FILTER]]...   TSan, in build-tsan/
 # Without targets, the default set below: ASan+UBSan over the unit and integration tests, TSan
 # over the threaded ones (loop closing, dense mapper, async segmenter, realtime, local mapping,
-# the queues). The filters leave out the slowest runs whose code paths other tests cover; each
-# one says why.
+# the extraction helper, reset when lost, the queues). The filters leave out the slowest runs
+# whose code paths other tests cover; each one says why.
 #
 # Kept cheap for a 2-core CI machine (cmake/DrvslamSanitizers.cmake): only the chosen test
 # binaries and the CLI they run are built, at -O1 -g1 as a unity build, without the benchmarks or
@@ -13,7 +13,7 @@
 # trained again. Binaries run two at a time. Every report of every process, the CLI runs the
 # tests start included, goes to a log file: any report fails the job (exit status 1) and is
 # printed. Undefined behaviour stops the program (-fno-sanitize-recover). Third-party false
-# positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason (none so far).
+# positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason.
 # Options given in ASAN_OPTIONS, UBSAN_OPTIONS or TSAN_OPTIONS come last and win (for example
 # ASAN_OPTIONS=detect_leaks=0 to look past a known leak).
 set -euo pipefail
@@ -22,6 +22,7 @@ root=$(pwd)
 
 kind="${1:-}"
 run_prefix=()
+generator=()
 export ASAN_OPTIONS="${ASAN_OPTIONS:-}" UBSAN_OPTIONS="${UBSAN_OPTIONS:-}" TSAN_OPTIONS="${TSAN_OPTIONS:-}"
 shift || true
 case "$kind" in
@@ -57,19 +58,45 @@ case "$kind" in
     ;;
   thread)
     build=build-tsan
+    # Longest first: two run at a time. The threaded System runs render synthetic sequences that
+    # have ground-truth masks, so each runs tracking with the ORB extractor's helper thread
+    # (SideWorker, ORBextractor.threads 2), the segmentation thread, local mapping, loop closing
+    # and the dense mapper together.
     default_targets=(
+      # 301 frames around a room: a loop closed and a global BA while tracking goes on.
       loop_closing_integration_test:*Threaded*
-      realtime_integration_test
+      # 90 frames, every stage on: mapping, loop closing and dense beside tracking.
       local_mapping_integration_test:*Threaded*
+      # A map reset while the other threads hold keyframes (Tracking.resetWhenLost).
+      frame_faults_test:*Threaded*
+      # --realtime: feeder thread, one-frame slot, segmentation dropping frames, keyframe waits.
+      realtime_integration_test
       dense_test:DenseMapper.*
       semantic_test:AsyncSegmenterTest.*
       loop_closing_test:LoopCloserTest.*
-      core_test:BoundedQueueTest.*:LatestFrameSlotTest.*
+      io_test:RealtimeFeederTest.*
+      core_test:BoundedQueueTest.*:LatestFrameSlotTest.*:SideWorkerTest.*
     )
     export TSAN_OPTIONS="second_deadlock_stack=1:log_path=REPORTS/tsan:${TSAN_OPTIONS:-}"
+    # The integration tests render their synthetic sequences with `drvslam synth` first: with the
+    # release CLI when there is one, as rendering is not what this job tests and takes minutes
+    # under TSan (a 90-frame sequence: 11 s released, over 4 min here).
+    if [ -x build/bin/drvslam ]; then export DRVSLAM_TEST_SYNTH_CLI="$root/build/bin/drvslam"; fi
+    # OpenCV's cv::parallel_for_ (the renderer's) runs on this system's OpenCV on uninstrumented
+    # TBB, which orders its workers with atomics TSan does not see: the caller reading what a
+    # worker wrote in a finished loop is reported as a race (170 reports per instrumented `synth`
+    # run, each with a TBB worker). With one thread parallel_for_ runs its body on the caller,
+    # so every access TSan checks is ordered by our own, instrumented, synchronization. Threaded
+    # SLAM runs set OpenCV to one thread themselves (ApplyOpenCvThreadBudget).
+    export OPENCV_FOR_THREADS_NUM=1
     # Without address randomization: GCC 12's TSan does not know the memory layout kernels with
     # more mmap randomization bits give ("unexpected memory mapping").
     run_prefix=(setarch "$(uname -m)" -R)
+    # Ninja builds the chosen targets as one graph; make takes them one after another, so each
+    # test binary's link waits alone on one core.
+    if command -v ninja >/dev/null && [ ! -e "$build/CMakeCache.txt" ]; then
+      generator=(-G Ninja)
+    fi
     ;;
   *)
     echo "usage: $0 address|thread [TEST_TARGET[:GTEST_FILTER]]..." >&2
@@ -97,7 +124,8 @@ if [ -s "$release_vocabulary" ]; then
   cp "$release_vocabulary" "$build/share/drvslam/default_vocab.bin"
 fi
 
-cmake -S . -B "$build" -DDRVSLAM_SANITIZE="$kind" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+cmake -S . -B "$build" ${generator[@]+"${generator[@]}"} \
+  -DDRVSLAM_SANITIZE="$kind" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
   -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
   -DDRVSLAM_BUILD_BENCH=OFF -DDRVSLAM_BUILD_PYTHON=OFF \

@@ -30,6 +30,15 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kFrames = 90;  // 3 s at 30 Hz
 constexpr int kNetworkMs = 1000;
+// Under ThreadSanitizer (scripts/sanitizers.sh thread) every stage runs 5-15 times slower:
+// tracking a frame takes about as long as the network's pass, so the bounds on speed below cannot
+// hold there. That run checks the threads' hand-offs and the accounting; the ordinary build checks
+// the speed.
+#if defined(__SANITIZE_THREAD__)
+constexpr bool kSpeedChecked = false;
+#else
+constexpr bool kSpeedChecked = true;
+#endif
 
 class SlowSegmenter : public Segmenter {
  public:
@@ -97,27 +106,29 @@ TEST(RealtimeIntegrationTest, TrackingNeverWaitsForASlowNetworkAndSkipsWhatItCan
   for (const StampedPose& pose : system.CameraTrajectory()) {
     EXPECT_EQ(tracked_stamps.count(pose.timestamp), 1u) << pose.timestamp;
   }
-  // Tracking never waited for the network (1 s per frame): the wait for masks is nothing but
-  // the bounded keyframe waits (Segmentation.keyframeWaitMs, 15 ms), and whole frames stay far
-  // below the network's latency. Generous bounds: the machine may be loaded.
-  const TimingSummary wait = stats.stages.at("segmentation_wait");
-  EXPECT_LT(wait.median_ms, 5.0);
-  EXPECT_LT(wait.max_ms, kNetworkMs / 4.0);
-  EXPECT_LT(Percentile(frame_ms, 0.5), kNetworkMs / 2.0);
-  // The network takes the newest frame whenever it is free: the ones that waited meanwhile
-  // were dropped.
-  ASSERT_TRUE(stats.dynamic && stats.dynamic->segmentation);
-  EXPECT_GT(stats.dynamic->segmentation->dropped, 0u);
-  EXPECT_LT(stats.dynamic->segmentation->segmented, frame_ms.size() / 2);
-  // The run ends about when the sequence does: after the last frame arrived (late only when
-  // loading frames fell behind), only the frame being tracked is finished. The clock starts once
-  // the frames are decoded ahead.
-  const double playback_s = run_s - feeder.PreloadSeconds();
-  const double lag_s = feeder.MaxArrivalLagMs() / 1000.0;
-  const double longest_frame_s = Percentile(frame_ms, 1.0) / 1000.0;
-  EXPECT_LT(playback_s, duration + lag_s + longest_frame_s + 0.5)
-      << "sequence " << duration << " s, arrival lag " << lag_s << " s, longest frame "
-      << longest_frame_s << " s";
+  if (kSpeedChecked) {
+    // Tracking never waited for the network (1 s per frame): the wait for masks is nothing but
+    // the bounded keyframe waits (Segmentation.keyframeWaitMs, 15 ms), and whole frames stay far
+    // below the network's latency. Generous bounds: the machine may be loaded.
+    const TimingSummary wait = stats.stages.at("segmentation_wait");
+    EXPECT_LT(wait.median_ms, 5.0);
+    EXPECT_LT(wait.max_ms, kNetworkMs / 4.0);
+    EXPECT_LT(Percentile(frame_ms, 0.5), kNetworkMs / 2.0);
+    // The network takes the newest frame whenever it is free: the ones that waited meanwhile
+    // were dropped.
+    ASSERT_TRUE(stats.dynamic && stats.dynamic->segmentation);
+    EXPECT_GT(stats.dynamic->segmentation->dropped, 0u);
+    EXPECT_LT(stats.dynamic->segmentation->segmented, frame_ms.size() / 2);
+    // The run ends about when the sequence does: after the last frame arrived (late only when
+    // loading frames fell behind), only the frame being tracked is finished. The clock starts once
+    // the frames are decoded ahead.
+    const double playback_s = run_s - feeder.PreloadSeconds();
+    const double lag_s = feeder.MaxArrivalLagMs() / 1000.0;
+    const double longest_frame_s = Percentile(frame_ms, 1.0) / 1000.0;
+    EXPECT_LT(playback_s, duration + lag_s + longest_frame_s + 0.5)
+        << "sequence " << duration << " s, arrival lag " << lag_s << " s, longest frame "
+        << longest_frame_s << " s";
+  }
   EXPECT_GT(stats.tracked, stats.frames / 2);
   fs::remove_all(root);
 }

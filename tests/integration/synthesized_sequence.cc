@@ -28,8 +28,10 @@ fs::path FreshTempFolder(const std::string& name) {
 
 std::string SynthesizeSequence(const fs::path& root, const std::string& synth_args) {
   const fs::path log = root / "synth.log";
-  const std::string command = std::string(DRVSLAM_CLI) + " --log-level warn synth " + synth_args +
-                              " --out " + (root / "seq").string() + " > " + log.string() + " 2>&1";
+  const char* const synth_cli = std::getenv("DRVSLAM_TEST_SYNTH_CLI");
+  const std::string cli = synth_cli && *synth_cli ? synth_cli : DRVSLAM_CLI;
+  const std::string command = cli + " --log-level warn synth " + synth_args + " --out " +
+                              (root / "seq").string() + " > " + log.string() + " 2>&1";
   if (std::system(command.c_str()) == 0) return "";
   return command + "\n" + ReadFile(log);
 }

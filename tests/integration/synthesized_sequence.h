@@ -21,7 +21,10 @@ std::string ReadFile(const std::filesystem::path& path);
 std::filesystem::path FreshTempFolder(const std::string& name);
 
 // Runs `drvslam --log-level warn synth <synth_args> --out <root>/seq`. Returns an empty string on
-// success, else the command line and its output, for the assertion message.
+// success, else the command line and its output, for the assertion message. The CLI is the one
+// built with the test, or the environment's DRVSLAM_TEST_SYNTH_CLI when set: the TSan job renders
+// its inputs with the release CLI, because rendering is not what it tests and takes minutes
+// under the sanitizer (scripts/sanitizers.sh).
 std::string SynthesizeSequence(const std::filesystem::path& root, const std::string& synth_args);
 
 // FreshTempFolder(folder_name) into *root, then SynthesizeSequence there. Use it as
