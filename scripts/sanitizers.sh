@@ -76,6 +76,9 @@ case "$kind" in
       loop_closing_test:LoopCloserTest.*
       io_test:RealtimeFeederTest.*
       core_test:BoundedQueueTest.*:LatestFrameSlotTest.*:SideWorkerTest.*
+      # The dynamic stage's flow helper (Dynamic.flowThread): same frames as without it, and a
+      # frame abandoned with its flow job in flight.
+      dynamic_test:DynamicFrontEndTest.FlowOnTheHelperThread*:DynamicFrontEndTest.AFrameAbandoned*
     )
     export TSAN_OPTIONS="second_deadlock_stack=1:log_path=REPORTS/tsan:${TSAN_OPTIONS:-}"
     # The integration tests render their synthetic sequences with `drvslam synth` first: with the
