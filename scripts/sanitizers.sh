@@ -97,17 +97,19 @@ if [ -s "$release_vocabulary" ]; then
   cp "$release_vocabulary" "$build/share/drvslam/default_vocab.bin"
 fi
 
+build_targets=(drvslam_cli)
+for entry in "${targets[@]}"; do build_targets+=("${entry%%:*}"); done
+[ "$train_vocabulary" = ON ] && build_targets+=(drvslam_default_vocab)
+# All of them as one target (drvslam_sanitizer_set), so that make builds them in parallel.
 cmake -S . -B "$build" -DDRVSLAM_SANITIZE="$kind" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
   -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
   -DDRVSLAM_BUILD_BENCH=OFF -DDRVSLAM_BUILD_PYTHON=OFF \
-  -DDRVSLAM_BUILD_DEFAULT_VOCABULARY="$train_vocabulary" >/dev/null
+  -DDRVSLAM_BUILD_DEFAULT_VOCABULARY="$train_vocabulary" \
+  -DDRVSLAM_SANITIZER_TARGETS="$(IFS=';'; echo "${build_targets[*]}")" >/dev/null
 
-build_targets=(drvslam_cli)
-for entry in "${targets[@]}"; do build_targets+=("${entry%%:*}"); done
-[ "$train_vocabulary" = ON ] && build_targets+=(drvslam_default_vocab)
 started=$(date +%s)
-cmake --build "$build" -j "$(nproc)" --target "${build_targets[@]}"
+cmake --build "$build" -j "$(nproc)" --target drvslam_sanitizer_set
 echo "sanitizers ($kind): build finished in $(($(date +%s) - started)) s"
 
 # One binary: its output and its sanitizer reports in logs/<n>.*; a line when it ends.
