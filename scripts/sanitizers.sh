@@ -14,8 +14,9 @@
 # tests start included, goes to a log file: any report fails the job (exit status 1) and is
 # printed. Undefined behaviour stops the program (-fno-sanitize-recover). The address job from
 # scratch (no ccache) on a shared 2-core machine, load average 2-6: build 816 s (1,170 CPU-s),
-# tests 305 s (487 CPU-s); it needs the release build's vocabulary to be that cheap. Third-party false
-# positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason (none so far).
+# tests 305 s (487 CPU-s); it needs the release build's vocabulary to be that cheap.
+# Third-party false positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason
+# (none so far).
 # Options given in ASAN_OPTIONS, UBSAN_OPTIONS or TSAN_OPTIONS come last and win (for example
 # ASAN_OPTIONS=detect_leaks=0 to look past a known leak).
 set -euo pipefail
