@@ -15,10 +15,10 @@
 namespace drvslam::cli {
 namespace {
 
-std::atomic<bool> g_stop_requested{false};
+std::atomic<bool> g_benchmark_stop_requested{false};
 
-void RequestStop(int) {
-  g_stop_requested = true;
+void RequestBenchmarkStop(int) {
+  g_benchmark_stop_requested = true;
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 
@@ -100,8 +100,8 @@ void RunBenchmarkCommand(const BenchmarkArguments& args) {
     bar.reset();
     PrintRunResult(entry, run);
   };
-  std::signal(SIGINT, RequestStop);
-  const BenchmarkReport report = RunBenchmark(options, progress, &g_stop_requested);
+  std::signal(SIGINT, RequestBenchmarkStop);
+  const BenchmarkReport report = RunBenchmark(options, progress, &g_benchmark_stop_requested);
   std::printf("wrote:       %s/benchmark.md, %s/benchmark.json\n", args.out.c_str(),
               args.out.c_str());
   std::size_t runs = 0;
@@ -120,7 +120,7 @@ void RunBenchmarkCommand(const BenchmarkArguments& args) {
   }
 }
 
-const bool kRegistered = RegisterCommand("benchmark", [](CLI::App& root) {
+const bool kBenchmarkCommandRegistered = RegisterCommand("benchmark", [](CLI::App& root) {
   auto args = std::make_shared<BenchmarkArguments>();
   CLI::App* command = root.add_subcommand(
       "benchmark",

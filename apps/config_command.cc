@@ -67,7 +67,7 @@ void AddOutputOption(CLI::App* command, const std::string& name, std::string* fi
       ->default_str("-");
 }
 
-const bool kRegistered = RegisterCommand("config", [](CLI::App& root) {
+const bool kConfigCommandRegistered = RegisterCommand("config", [](CLI::App& root) {
   auto args = std::make_shared<ConfigArguments>();
   CLI::App* command = root.add_subcommand(
       "config", "settings files: dump every key with its default and doc, write the docs, check");

@@ -8,7 +8,7 @@
 namespace drvslam::cli {
 namespace {
 
-const bool kRegistered = RegisterCommand("demo", [](CLI::App& root) {
+const bool kDemoCommandRegistered = RegisterCommand("demo", [](CLI::App& root) {
   auto options = std::make_shared<DemoOptions>();
   CLI::App* command = root.add_subcommand(
       "demo", "synthesize static and dynamic sequences, run SLAM, evaluate, write a report");

@@ -74,7 +74,7 @@ void RunDenseEval(const DenseEvalArguments& args) {
   }
 }
 
-const bool kRegistered = RegisterCommand("dense-eval", [](CLI::App& root) {
+const bool kDenseEvalCommandRegistered = RegisterCommand("dense-eval", [](CLI::App& root) {
   auto args = std::make_shared<DenseEvalArguments>();
   DenseEvaluationOptions& o = args->options;
   CLI::App* cmd = root.add_subcommand(

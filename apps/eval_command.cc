@@ -103,7 +103,7 @@ void RunEval(EvalArguments args) {
   }
 }
 
-const bool kRegistered = drvslam::cli::RegisterCommand("eval", [](CLI::App& root) {
+const bool kEvalCommandRegistered = drvslam::cli::RegisterCommand("eval", [](CLI::App& root) {
   auto args = std::make_shared<EvalArguments>();
   CLI::App* cmd = root.add_subcommand(
       "eval",

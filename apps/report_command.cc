@@ -15,7 +15,7 @@ struct ReportOptions {
   RunDataOptions data;
 };
 
-const bool kRegistered = RegisterCommand("report", [](CLI::App& root) {
+const bool kReportCommandRegistered = RegisterCommand("report", [](CLI::App& root) {
   auto options = std::make_shared<ReportOptions>();
   options->data.dense_budget = kReportDenseBudget;
   CLI::App* command = root.add_subcommand(

@@ -14,9 +14,9 @@
 namespace drvslam::cli {
 namespace {
 
-std::atomic<bool> g_stop_requested{false};
+std::atomic<bool> g_run_stop_requested{false};
 
-void RequestStop(int) { g_stop_requested = true; }
+void RequestRunStop(int) { g_run_stop_requested = true; }
 
 // A ratio with three decimals, or n/a when it is undefined (nothing to score).
 std::string RatioText(const std::optional<double>& ratio) {
@@ -127,7 +127,7 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   }
 }
 
-const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
+const bool kRunCommandRegistered = RegisterCommand("run", [](CLI::App& root) {
   auto options = std::make_shared<RunOptions>();
   options->out_dir = "out";
   CLI::App* command = root.add_subcommand("run", "SLAM over a TUM-layout RGB-D sequence");
@@ -207,11 +207,11 @@ const bool kRegistered = RegisterCommand("run", [](CLI::App& root) {
         std::fflush(stdout);
       };
     }
-    std::signal(SIGINT, RequestStop);
+    std::signal(SIGINT, RequestRunStop);
     ProgressBar bar("tracking");
     const RunSummary summary = RunSequence(
         *options, [&bar](std::size_t done, std::size_t total) { bar.Update(done, total); },
-        &g_stop_requested);
+        &g_run_stop_requested);
     PrintSummary(summary, options->out_dir);
   });
 });

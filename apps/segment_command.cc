@@ -75,7 +75,7 @@ void RunSegment(SegmentArguments& args) {
   }
 }
 
-const bool kRegistered = drvslam::cli::RegisterCommand("segment", [](CLI::App& root) {
+const bool kSegmentCommandRegistered = drvslam::cli::RegisterCommand("segment", [](CLI::App& root) {
   auto args = std::make_shared<SegmentArguments>();
   CLI::App* cmd = root.add_subcommand(
       "segment", "instance segmentation of images or videos with a YOLOv8/YOLO11-seg ONNX model");

@@ -115,7 +115,7 @@ void RunSynth(SynthArguments& args) {
   PrintSummary(summary);
 }
 
-const bool kRegistered = RegisterCommand("synth", [](CLI::App& root) {
+const bool kSynthCommandRegistered = RegisterCommand("synth", [](CLI::App& root) {
   auto args = std::make_shared<SynthArguments>();
   synth::SynthOptions& o = args->options;
   CLI::App* cmd = root.add_subcommand(

@@ -10,9 +10,9 @@
 namespace drvslam::cli {
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;
+volatile std::sig_atomic_t g_view_stop = 0;
 
-void RequestStop(int) { g_stop = 1; }
+void RequestViewStop(int) { g_view_stop = 1; }
 
 struct ViewOptions {
   std::string run_dir;
@@ -20,7 +20,7 @@ struct ViewOptions {
   RunDataOptions data;
 };
 
-const bool kRegistered = RegisterCommand("view", [](CLI::App& root) {
+const bool kViewCommandRegistered = RegisterCommand("view", [](CLI::App& root) {
   auto options = std::make_shared<ViewOptions>();
   CLI::App* command =
       root.add_subcommand("view", "serve the viewer page for a finished run (its output folder)");
@@ -37,11 +37,11 @@ const bool kRegistered = RegisterCommand("view", [](CLI::App& root) {
       ->capture_default_str();
   command->callback([options] {
     const RunViewServer server(options->run_dir, options->data, options->port);
-    std::signal(SIGINT, RequestStop);
-    std::signal(SIGTERM, RequestStop);
+    std::signal(SIGINT, RequestViewStop);
+    std::signal(SIGTERM, RequestViewStop);
     std::printf("viewer: %s (Ctrl-C to stop)\n", server.Url().c_str());
     std::fflush(stdout);
-    while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    while (!g_view_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   });
 });
 

@@ -133,7 +133,7 @@ void AddInfo(CLI::App* vocab) {
 
 // ---- eval ----
 
-struct EvalArguments {
+struct VocabEvalArguments {
   std::vector<std::string> vocabularies;
   std::vector<std::string> inputs;
   std::string sequence;
@@ -142,7 +142,7 @@ struct EvalArguments {
   bool per_query = false;
 };
 
-void RunEval(const EvalArguments& args) {
+void RunVocabEval(const VocabEvalArguments& args) {
   std::vector<std::string> paths;
   std::vector<drvslam::BowVocabulary> vocabularies;
   for (const std::string& given : args.vocabularies) {
@@ -194,7 +194,7 @@ void RunEval(const EvalArguments& args) {
 }
 
 void AddEval(CLI::App* vocab) {
-  auto args = std::make_shared<EvalArguments>();
+  auto args = std::make_shared<VocabEvalArguments>();
   CLI::App* cmd = vocab->add_subcommand(
       "eval",
       "place-recognition quality: the rank of each query's true database image by BoW score");
@@ -249,11 +249,11 @@ void AddEval(CLI::App* vocab) {
       throw drvslam::Error("vocab eval: give --images or --sequence");
     }
     args->revisits.features_per_image = args->options.features_per_image;
-    RunEval(*args);
+    RunVocabEval(*args);
   });
 }
 
-const bool kRegistered = drvslam::cli::RegisterCommand("vocab", [](CLI::App& root) {
+const bool kVocabCommandRegistered = drvslam::cli::RegisterCommand("vocab", [](CLI::App& root) {
   CLI::App* vocab = root.add_subcommand(
       "vocab", "bag-of-words vocabularies for place recognition: train, info, eval");
   vocab->require_subcommand(1);

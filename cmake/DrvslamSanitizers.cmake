@@ -25,8 +25,7 @@ add_link_options(${drvslam_sanitizer_flags})
 # heavy Eigen, OpenCV, Ceres and GoogleTest headers are parsed once per batch, not once per file.
 # Files that define a helper of the same name as a sibling's in their anonymous namespaces would
 # clash in one batch: they are compiled on their own (a new clash is a compile error naming both
-# files; add one of them here). The CLI's command files all register themselves as kRegistered.
-set(DRVSLAM_NO_UNITY_TARGETS drvslam_cli)
+# files; add one of them here).
 set(DRVSLAM_NO_UNITY_FILES
   src/drvslam/loop/vocabulary_io.cc            # kDescriptorBytes (bow_vocabulary.cc)
   src/drvslam/synth/camera_path.cc             # kTwoPi (actors.cc)
@@ -41,11 +40,6 @@ set(DRVSLAM_NO_UNITY_FILES
   tests/optim/se3_manifold_test.cc             # Ambient, PlusJacobian (pose_costs_test.cc)
   tests/synth/real_camera_test.cc)             # Centroid (scene_test.cc), SmallOptions
 function(drvslam_unity_exceptions)
-  foreach(target_name ${DRVSLAM_NO_UNITY_TARGETS})
-    if(TARGET ${target_name})
-      set_target_properties(${target_name} PROPERTIES UNITY_BUILD OFF)
-    endif()
-  endforeach()
   # Each file's folder is where its target is made, so that is the scope of its property. A
   # source with compile definitions of its own is left out of the unity batches (CMake's
   # UNITY_BUILD); SKIP_UNITY_BUILD_INCLUDE would be read too early, when the target is made.
@@ -59,3 +53,19 @@ function(drvslam_unity_exceptions)
 endfunction()
 # Once every target exists.
 cmake_language(DEFER DIRECTORY ${CMAKE_SOURCE_DIR} CALL drvslam_unity_exceptions)
+
+# The targets a sanitizer job builds, as one target (drvslam_sanitizer_set): the Makefile
+# generator builds the targets named on one command line one after the other (.NOTPARALLEL), so
+# each one's last compile and its link would leave the second core idle; the dependencies of a
+# single target are built in parallel.
+set(DRVSLAM_SANITIZER_TARGETS "" CACHE STRING "Targets the drvslam_sanitizer_set target builds")
+function(drvslam_sanitizer_set)
+  add_custom_target(drvslam_sanitizer_set)
+  foreach(target_name ${DRVSLAM_SANITIZER_TARGETS})
+    if(NOT TARGET ${target_name})
+      message(FATAL_ERROR "DRVSLAM_SANITIZER_TARGETS names '${target_name}', which is no target")
+    endif()
+    add_dependencies(drvslam_sanitizer_set ${target_name})
+  endforeach()
+endfunction()
+cmake_language(DEFER DIRECTORY ${CMAKE_SOURCE_DIR} CALL drvslam_sanitizer_set)
