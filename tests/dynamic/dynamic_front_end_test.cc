@@ -537,7 +537,9 @@ TEST_F(DynamicFrontEndTest, FlowOnTheHelperThreadGivesTheSameFrames) {
     }
     const auto summaries = timings.Summaries();
     EXPECT_EQ(summaries.count("flow"), helper ? 1u : 0u);
-    if (helper) EXPECT_EQ(summaries.at("flow").count, static_cast<std::size_t>(frames));
+    if (helper) {
+      EXPECT_EQ(summaries.at("flow").count, static_cast<std::size_t>(frames));
+    }
     EXPECT_EQ(summaries.at("motion_consistency").count, static_cast<std::size_t>(frames));
   }
   for (int f = 0; f < frames; ++f) {
