@@ -79,10 +79,13 @@ TEST_P(ResetWhenLostTest, TrajectoryHoldsTheFinalMapOnly) {
   EXPECT_EQ(trajectory.size(), summary.stats.tracked);
   EXPECT_GE(trajectory.size(), kFrames - kBlankTo - 2);
   // Only frames after the blank stretch, in one world frame: rigidly aligned to the ground truth
-  // they agree to a centimetre (the first map's frames, posed from its own origin, would not).
+  // they agree to a few centimetres. The first map's frames, posed from its own origin, would not:
+  // the true poses mixed that way (frames 0-49 from frame 0, the rest from frame 55) give 16.5 cm.
+  // Measured: 0.64 cm sequential; 0.72-1.07 cm in 13 threaded runs (one of them in CI), idle or
+  // with both cores loaded, so the bound leaves room for the threaded runs' spread.
   for (const auto& pose : trajectory) EXPECT_GT(pose.timestamp, stamps_[kBlankTo - 1]);
   const Trajectory gt = ReadTumTrajectory((root_ / "seq" / "groundtruth.txt").string());
-  EXPECT_LT(ComputeAte(gt, trajectory, AteOptions{}).errors.rmse, 0.01);
+  EXPECT_LT(ComputeAte(gt, trajectory, AteOptions{}).errors.rmse, 0.03);
   // Keyframes too: the final map holds no keyframe of the first one.
   const Trajectory keyframes =
       ReadTumTrajectory((root_ / "out" / "KeyFrameTrajectory.txt").string());
