@@ -2,10 +2,11 @@
 # Configures and builds drvslam (Release) into build/. Extra arguments go to cmake --build
 # (for example `--target drvslam_cli`).
 #
-# A unity build (cmake/DrvslamUnity.cmake): a few sources per compiler run, which halves the
-# CPU time of a build from scratch, as CI does on every run. The program is the same as a
-# file-by-file build's (the --sequential outputs are byte-identical). Editing one file
-# recompiles its batch, so while working on the code DRVSLAM_UNITY=OFF may rebuild faster.
+# A unity build (cmake/DrvslamUnity.cmake): a few sources per compiler run. A build from
+# scratch, as CI makes on every run, took 749 CPU-s against 1,315 file by file (Ninja, no
+# ccache). The program is the same as a file-by-file build's (the --sequential outputs are
+# byte-identical). Editing one file recompiles its batch, so while working on the code
+# DRVSLAM_UNITY=OFF may rebuild faster.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
