@@ -155,6 +155,7 @@ System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_op
   ApplyOpenCvThreadBudget(ChooseOpenCvThreads(
       options.dynamic ? options.dynamic->segmentation.dnn_threads : 0, options.sequential));
   tracker.SetMappingStatus(&local_mapper);
+  tracker.SetLiveCamera(options.dynamic && options.dynamic->realtime && !options.sequential);
   if (options.relocalization.enabled) {
     options.relocalization.Check();
     const Stopwatch load;

@@ -28,14 +28,34 @@ TEST(MappingHandoffTest, BusyMappingStillTakesKeyFramesUntilThreeWait) {
   KeyFrameEvidence e = Wanted();
   e.mapping_idle = false;
   EXPECT_TRUE(WantNewKeyFrame(e));
-  for (int queued = 0; queued < kMaxQueuedKeyFrames; ++queued) {
+  ASSERT_EQ(e.max_queued_keyframes, kRgbdQueuedKeyFrames);  // the default
+  ASSERT_EQ(kRgbdQueuedKeyFrames, 3);
+  for (int queued = 0; queued < 3; ++queued) {
     e.queued_keyframes = queued;
     EXPECT_TRUE(NeedNewKeyFrame(e)) << queued;
   }
-  e.queued_keyframes = kMaxQueuedKeyFrames;
+  e.queued_keyframes = 3;
   EXPECT_TRUE(WantNewKeyFrame(e));
   EXPECT_FALSE(NeedNewKeyFrame(e));
   e.mapping_idle = true;  // an idle mapper has an empty queue in practice; idle wins
+  EXPECT_TRUE(NeedNewKeyFrame(e));
+}
+
+TEST(MappingHandoffTest, WithNoQueueAllowedOnlyAnIdleMapperTakesKeyFrames) {
+  // Tracking.realtimeQueuedKeyframes 0, a realtime run's default.
+  KeyFrameEvidence e = Wanted();
+  e.max_queued_keyframes = 0;
+  e.mapping_idle = false;
+  e.queued_keyframes = 0;
+  EXPECT_TRUE(WantNewKeyFrame(e));
+  EXPECT_FALSE(NeedNewKeyFrame(e));
+  e.max_queued_keyframes = 1;
+  EXPECT_TRUE(NeedNewKeyFrame(e));
+  e.queued_keyframes = 1;
+  EXPECT_FALSE(NeedNewKeyFrame(e));
+  e.max_queued_keyframes = 0;
+  e.mapping_idle = true;
+  e.queued_keyframes = 0;
   EXPECT_TRUE(NeedNewKeyFrame(e));
 }
 

@@ -16,7 +16,7 @@ bool WantNewKeyFrame(const KeyFrameEvidence& e) {
 }
 
 bool NeedNewKeyFrame(const KeyFrameEvidence& e) {
-  return WantNewKeyFrame(e) && (e.mapping_idle || e.queued_keyframes < kMaxQueuedKeyFrames);
+  return WantNewKeyFrame(e) && (e.mapping_idle || e.queued_keyframes < e.max_queued_keyframes);
 }
 
 }  // namespace drvslam

@@ -283,6 +283,7 @@ bool Tracker::NeedNewKeyFrame() const {
   evidence.keyframes_in_map = static_cast<int>(map_.KeyFrameCount());
   evidence.mapping_idle = mapping_ == nullptr || mapping_->AcceptsKeyFrames();
   evidence.queued_keyframes = mapping_ != nullptr ? mapping_->QueuedKeyFrames() : 0;
+  evidence.max_queued_keyframes = max_queued_keyframes_;
   evidence.tracked_inliers = matches_inliers_;
   // ORB-SLAM2's thresholds count a depth observation twice (observation_weight.h): with one
   // or two keyframes, a point seen once with depth is already well observed.

@@ -62,6 +62,11 @@ class Tracker {
   // Localization only: frames are tracked against the map as it is; no keyframe (so no map
   // point) is ever added.
   void SetLocalizationOnly(bool localization_only) { localization_only_ = localization_only; }
+  // A live camera (--realtime): while local mapping is busy, keyframes are added only until
+  // Tracking.realtimeQueuedKeyframes wait, instead of ORB-SLAM2's 3.
+  void SetLiveCamera(bool live) {
+    max_queued_keyframes_ = live ? options_.realtime_queued_keyframes : kRgbdQueuedKeyFrames;
+  }
 
   TrackingState State() const { return state_; }
   // A guess, before the next frame is tracked, that it will become a keyframe: the last
@@ -103,6 +108,7 @@ class Tracker {
   PlaceRecognition* place_recognition_ = nullptr;
   TrackerOptions options_;
   int max_frames_between_keyframes_;
+  int max_queued_keyframes_ = kRgbdQueuedKeyFrames;  // SetLiveCamera
   OrbMatcher matcher_;
   PoseOptimizerOptions pose_options_;
 

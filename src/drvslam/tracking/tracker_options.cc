@@ -21,7 +21,10 @@ const OptionTable<TrackerOptions>& TrackerOptionTable() {
               "When lost: 1 starts a new map (the saved trajectory then holds the final "
               "map's frames only), 0 keeps trying to recover.")
         .Bool("bowReferenceMatching", &T::bow_reference_matching,
-              "Match the reference keyframe by bag of words (1) or brute force (0).");
+              "Match the reference keyframe by bag of words (1) or brute force (0).")
+        .Int("realtimeQueuedKeyframes", &T::realtime_queued_keyframes, Bounds::In(0, 3),
+             "--realtime: keyframes may be added while local mapping is busy until this many "
+             "wait (0 = only when it is idle; other runs: 3).");
     return t;
   }();
   return table;
