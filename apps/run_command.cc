@@ -177,7 +177,8 @@ const bool kRunCommandRegistered = RegisterCommand("run", [](CLI::App& root) {
                     "naming the nearest known key)");
   command->add_option("--frame-log", options->frame_log,
                       "write one line per frame there: wall clock, ms inside TrackRGBD, "
-                      "tracked, keyframes, map points, resident memory (tab-separated)");
+                      "tracked, keyframes, map points, resident memory, tracking thread's CPU ms "
+                      "(tab-separated)");
   command->add_option("--save-map", options->save_map,
                       "after the run, save the map (keyframes, map points, graph, dense map) to "
                       "this file, for --load-map");

@@ -1,10 +1,18 @@
 #include "drvslam/core/timing.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 namespace drvslam {
+
+double ThreadCpuMs() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return 1e3 * static_cast<double>(now.tv_sec) + 1e-6 * static_cast<double>(now.tv_nsec);
+}
 
 void StageTimings::Record(const std::string& stage, double milliseconds) {
   std::lock_guard<std::mutex> lock(mutex_);

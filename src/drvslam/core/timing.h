@@ -42,6 +42,11 @@ TimingSummary Summarize(std::vector<double> samples_ms);
 // The same for a BoundedSample: Summarize(values) while it is exact, else from its histogram.
 TimingSummary Summarize(const BoundedSample& sample);
 
+// CPU time the calling thread has used, in milliseconds (CLOCK_THREAD_CPUTIME_ID). Next to a
+// Stopwatch's wall time it tells work from waiting: on a busy machine wall time mostly measures
+// the wait for a core.
+double ThreadCpuMs();
+
 // Milliseconds elapsed since construction.
 class Stopwatch {
  public:

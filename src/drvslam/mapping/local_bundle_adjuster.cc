@@ -1,24 +1,14 @@
 #include "drvslam/mapping/local_bundle_adjuster.h"
 
 #include <spdlog/spdlog.h>
-#include <time.h>
 
 #include <map>
 #include <mutex>
 #include <vector>
 
+#include "drvslam/core/timing.h"
+
 namespace drvslam {
-namespace {
-
-// CPU time of the calling thread: on a busy machine wall time mostly measures the wait for a
-// core, which says nothing about the bundle adjustment itself.
-double ThreadCpuMs() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return 1e3 * static_cast<double>(now.tv_sec) + 1e-6 * static_cast<double>(now.tv_nsec);
-}
-
-}  // namespace
 
 LocalBundleAdjustmentStats AdjustLocalMap(const std::shared_ptr<KeyFrame>& keyframe, Map& map,
                                           const LocalBundleAdjustmentOptions& options,
@@ -26,6 +16,7 @@ LocalBundleAdjustmentStats AdjustLocalMap(const std::shared_ptr<KeyFrame>& keyfr
                                           int max_local_keyframes) {
   LocalBundleAdjustmentStats stats;
   if (keyframe->IsBad()) return stats;
+  // CPU time, not wall: on a busy machine wall time mostly measures the wait for a core.
   const double cpu_start = ThreadCpuMs();
   const auto all_keyframes = map.KeyFrames();
   const long origin_id = all_keyframes.empty() ? 0 : all_keyframes.front()->Id();

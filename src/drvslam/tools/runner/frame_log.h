@@ -3,7 +3,9 @@
 // loop-closing log lines say corrections ran) and for soak runs (map size and resident memory
 // against the frame count). Columns: frame (index in the sequence), timestamp, wall_s (seconds
 // since the Unix epoch when TrackRGBD returned, the clock of the log lines), track_ms (the
-// TrackRGBD call), tracked (0/1), keyframes, map_points, rss_kib (VmRSS of the process).
+// TrackRGBD call), tracked (0/1), keyframes, map_points, rss_kib (VmRSS of the process),
+// track_cpu_ms (the tracking thread's CPU time in that call: a frame whose track_ms is far above
+// it waited for a core, one whose CPU time is high had more work).
 #pragma once
 
 #include <cstddef>
@@ -16,6 +18,7 @@ struct FrameLogLine {
   std::size_t frame = 0;
   double timestamp = 0.0;
   double track_ms = 0.0;
+  double track_cpu_ms = 0.0;
   bool tracked = false;
   std::size_t keyframes = 0;
   std::size_t map_points = 0;

@@ -12,6 +12,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/core/settings.h"
 #include "drvslam/core/settings_file.h"
+#include "drvslam/core/timing.h"
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_stats_json.h"
 #include "drvslam/dense/point_cloud_io.h"
@@ -244,12 +245,14 @@ RunSummary RunSequence(const RunOptions& options,
   if (!options.frame_log.empty()) frame_log.emplace(options.frame_log);
   const auto track = [&](const RgbdFrame& frame) {
     const Clock::time_point track_start = Clock::now();
+    const double track_cpu_start = frame_log ? ThreadCpuMs() : 0.0;
     const TrackResult result = system.TrackRGBD(frame.bgr, frame.depth, frame.timestamp);
     if (frame_log) {
       FrameLogLine line;
       line.frame = frame.index;
       line.timestamp = frame.timestamp;
       line.track_ms = std::chrono::duration<double, std::milli>(Clock::now() - track_start).count();
+      line.track_cpu_ms = ThreadCpuMs() - track_cpu_start;
       line.tracked = result.pose_valid;
       line.keyframes = system.GetMap().KeyFrameCount();
       line.map_points = system.GetMap().MapPointCount();
