@@ -39,6 +39,14 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
 
   // Observations keyed by keyframe id (so iteration order is deterministic).
   std::map<long, Observation> Observations() const;
+  // Calls visit(keyframe_id, observation) for each observation in keyframe-id order, under the
+  // point's lock, without copying the map (tracking's local map visits every matched point of
+  // every frame). `visit` must not call back into this point.
+  template <typename Visit>
+  void ForEachObservation(Visit&& visit) const {
+    std::lock_guard<std::mutex> lock(features_mutex_);
+    for (const auto& [keyframe_id, observation] : observations_) visit(keyframe_id, observation);
+  }
   int ObservationCount() const;
   // Ignored (returns false) once the point is bad: a culled or replaced point must not gain
   // observations again (it would keep keyframes and slots pointing at a dead point).
@@ -69,8 +77,9 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   int Visible() const { return visible_; }
   int Found() const { return found_; }
 
-  // Tracking-thread bookkeeping (avoid re-adding the same point within one frame).
-  long track_reference_frame_id = -1;
+  // Tracking-thread bookkeeping (avoid re-adding the same point within one frame):
+  // the BuildLocalMap call that last listed this point, and the frame that last matched it.
+  long local_map_listing = -1;
   long last_frame_seen_id = -1;
 
  private:

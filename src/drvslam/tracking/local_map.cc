@@ -1,5 +1,6 @@
 #include "drvslam/tracking/local_map.h"
 
+#include <atomic>
 #include <map>
 #include <set>
 
@@ -12,11 +13,11 @@ LocalMap BuildLocalMap(const Frame& frame, std::size_t max_keyframes) {
   for (std::size_t i = 0; i < frame.Size(); ++i) {
     const auto& point = frame.map_points[i];
     if (!point || point->IsBad()) continue;
-    for (const auto& [id, observation] : point->Observations()) {
+    point->ForEachObservation([&votes](long id, const MapPoint::Observation& observation) {
       auto& entry = votes[id];
       if (!entry.first) entry.first = observation.keyframe.lock();
       ++entry.second;
-    }
+    });
   }
   std::set<long> included;
   int best_votes = 0;
@@ -49,11 +50,15 @@ LocalMap BuildLocalMap(const Frame& frame, std::size_t max_keyframes) {
     try_add(keyframe->Parent());
   }
 
-  std::set<long> seen_points;
+  // Each point once, in the order first seen: a point carries the number of the listing that
+  // took it, cheaper than a set of ids over tens of thousands of (mostly repeated) points.
+  static std::atomic<long> listings{0};
+  const long listing = listings.fetch_add(1, std::memory_order_relaxed);
   for (const auto& keyframe : local.keyframes) {
     for (const auto& point : keyframe->MapPoints()) {
-      if (!point || point->IsBad()) continue;
-      if (seen_points.insert(point->Id()).second) local.points.push_back(point);
+      if (!point || point->local_map_listing == listing || point->IsBad()) continue;
+      point->local_map_listing = listing;
+      local.points.push_back(point);
     }
   }
   return local;
