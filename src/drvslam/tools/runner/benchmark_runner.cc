@@ -229,6 +229,9 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
   run.out_dir = run_dir.string();
   RunOptions options = ToRunOptions(prepared.result.entry, run.out_dir);
   options.strict_settings = prepared.strict_settings;
+  // Per-frame wall and CPU time beside the run's summary: where a run's skipped or slow frames
+  // came from.
+  options.frame_log = (run_dir / "frames.tsv").string();
   const auto started = std::chrono::steady_clock::now();
   const auto seconds_since_start = [&started] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
