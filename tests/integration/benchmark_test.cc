@@ -426,9 +426,12 @@ TEST_F(BenchmarkEndToEndTest, TwoSequentialRunsAgreeAndAFailedRunIsRecordedAndRe
   EXPECT_GT(aggregate["fps"]["median"].get<double>(), 0.0);
   const std::string run_dir = (out / "walking_gt" / "run_2").string();
   EXPECT_EQ(second["out_dir"], run_dir);
-  for (const char* file : {"CameraTrajectory.txt", "stats.json", "eval.json"}) {
+  for (const char* file : {"CameraTrajectory.txt", "stats.json", "eval.json", "frames.tsv"}) {
     EXPECT_TRUE(fs::exists(fs::path(run_dir) / file)) << file;
   }
+  // The run's frame log: a header and one line per frame.
+  const std::string frame_log = test::ReadFile(fs::path(run_dir) / "frames.tsv");
+  EXPECT_EQ(std::count(frame_log.begin(), frame_log.end(), '\n'), kFrames + 1);
   // frames_skipped is the run's own stats.json figure where it reports one, else null.
   std::ifstream stats_file(fs::path(run_dir) / "stats.json");
   const nlohmann::json stats = nlohmann::json::parse(stats_file);
