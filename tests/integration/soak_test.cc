@@ -86,15 +86,24 @@ TEST(SoakTest, AfterWarmUpMemoryFollowsTheMapNotTheFrameCount) {
 
   const std::vector<LoggedFrame> frames = ReadFrameLog(options.frame_log);
   ASSERT_EQ(frames.size(), static_cast<std::size_t>(kLaps * kLapFrames));
-  // The tracking thread's CPU time is part of the frame's wall time (0.05 ms for the two clocks'
-  // rounding to the microsecond), and a sequential run spends much of its wall time working: a
-  // zero or misplaced column fails, a loaded machine does not.
+  // The column is filled and plausible over the run. The tracking thread's CPU time
+  // (CLOCK_THREAD_CPUTIME_ID) and the frame's wall time (steady clock) are different clocks,
+  // read at different instants with different granularity, and a VM accounts CPU time its own
+  // way: a fresh VM had 6 of 1,800 frames with CPU 0.004-0.08 ms above wall. So no frame is
+  // compared with its wall time; only the run's sums are, with 5 % for the clocks' accounting
+  // (two sequential runs of the real Bonn dev half beside a build: CPU 55 % and 58 % of wall,
+  // and 5 of the 464 frames of one with CPU above wall, by up to 0.01 ms). A zero, negative or
+  // misplaced column fails either way; a loaded machine does not.
   double wall_ms = 0.0, cpu_ms = 0.0;
+  std::size_t frames_with_cpu_time = 0;
   for (const LoggedFrame& f : frames) {
-    EXPECT_LE(f.track_cpu_ms, f.track_ms + 0.05) << "frame " << f.frame;
+    EXPECT_GE(f.track_cpu_ms, 0.0) << "frame " << f.frame;
+    if (f.track_cpu_ms > 0.0) ++frames_with_cpu_time;
     wall_ms += f.track_ms;
     cpu_ms += f.track_cpu_ms;
   }
+  EXPECT_GT(frames_with_cpu_time, frames.size() * 9 / 10);
+  EXPECT_LE(cpu_ms, 1.05 * wall_ms);
   EXPECT_GT(cpu_ms, 0.1 * wall_ms);
   const std::vector<LoggedFrame> after_warm_up(frames.begin() + kWarmUpLaps * kLapFrames,
                                                frames.end());
