@@ -7,7 +7,8 @@
 import { decodeCloud, normalizeRun, poseNearest } from './data.js';
 import { showFigures, runFigures, showStages, showLoops, showNotes } from './panels.js';
 import { plotErrors, plotTrajectory } from './plots.js';
-import { MapScene } from './scene.js';
+import { groupStages } from './stages.js';
+import { createMapView } from './view3d.js';
 
 const viewer = {
   ready: false,
@@ -27,6 +28,8 @@ const viewer = {
   trackingState: '',
   finished: false,
   failure: null,
+  webgl: null,          // whether the 3-D view has WebGL (null until the page starts)
+  webglProblem: null,   // why not, when it has not
 };
 window.drvslamViewer = viewer;
 
@@ -52,10 +55,19 @@ function drawPlots(trajectory, groundTruth, errors, ate) {
   plotErrors($('plot-errors'), errors, ate ? ate.rmse : null);
 }
 
-// A finished run (view or report): everything at once.
+// A finished run (view or report): everything at once. The text panels and the 2-D plots come
+// first, so that they are there whatever happens to the 3-D view.
 function drawRun(scene, run) {
   document.title = run.title;
   $('title').textContent = run.title;
+  showFigures($('figures'), runFigures(run));
+  showStages($('stages'), groupStages(run.stats?.stages, 'median'), 'time per stage');
+  showLoops($('loops'), run.loops);
+  const notes = [...run.notes];
+  if (run.dense.total > 0) notes.push(denseNote(run.dense.count, run.dense.total));
+  showNotes($('notes'), notes);
+  drawPlots(run.trajectory, run.groundTruth, run.errors, run.ate);
+
   scene.fit(run.trajectory, run.sparse.positions);
   scene.setSparse(run.sparse.positions);
   if (run.dense.count > 0) scene.addDenseChunk(run.dense.positions, run.dense.colors);
@@ -63,16 +75,6 @@ function drawRun(scene, run) {
   scene.setKeyframes(run.keyframes);
   if (run.groundTruth) scene.setGroundTruth(run.groundTruth);
   scene.setLoops(loopPositions(run.loops, run.trajectory));
-
-  showFigures($('figures'), runFigures(run));
-  const stages = {};
-  for (const [name, timing] of Object.entries(run.stats?.stages ?? {})) stages[name] = timing.median_ms;
-  showStages($('stages'), stages, 'per-stage time per frame (median)');
-  showLoops($('loops'), run.loops);
-  const notes = [...run.notes];
-  if (run.dense.total > 0) notes.push(denseNote(run.dense.count, run.dense.total));
-  showNotes($('notes'), notes);
-  drawPlots(run.trajectory, run.groundTruth, run.errors, run.ate);
 
   Object.assign(viewer, {
     poses: run.trajectory.length,
@@ -152,7 +154,7 @@ class LiveRun {
       'inliers': m.inliers,
     };
     showFigures($('figures'), Object.entries(this.figures));
-    showStages($('stages'), m.stages, 'per-stage time, this frame');
+    showStages($('stages'), groupStages(m.stages, 'latest'), 'time per stage');
     this.schedulePlots();
   }
 
@@ -223,7 +225,10 @@ async function loadRun() {
 }
 
 async function start() {
-  const scene = new MapScene($('view3d'));
+  const view = createMapView($('view3d'));
+  viewer.webgl = view.webgl;
+  viewer.webglProblem = view.problem;
+  const scene = view.scene;
   const json = await loadRun();
   viewer.mode = json.mode ?? 'view';
   if (viewer.mode === 'live') {

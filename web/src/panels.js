@@ -1,4 +1,5 @@
-// The text panels: run figures, the strip of per-stage times, loop closures and notes.
+// The text panels: run figures, the per-stage times (per frame and per keyframe), loop closures
+// and notes.
 
 function escapeHtml(text) {
   return String(text).replace(/[&<>"']/g, (c) => `&#${c.charCodeAt(0)};`);
@@ -36,19 +37,37 @@ export function runFigures(run) {
 const kStageColors = ['#1f6fd1', '#e67e22', '#27ae60', '#8e44ad', '#c0392b', '#16a085', '#7f8c8d',
                       '#d35400', '#2c3e50', '#f1c40f'];
 
-// stages: {name: ms}. A horizontal bar per stage, scaled to the largest; "total" is drawn first.
-export function showStages(element, stages, caption) {
-  const entries = Object.entries(stages ?? {}).filter(([, ms]) => Number.isFinite(ms));
-  entries.sort((a, b) => (a[0] === 'total' ? -1 : b[0] === 'total' ? 1 : b[1] - a[1]));
-  const largest = Math.max(1e-6, ...entries.map(([, ms]) => ms));
-  const bars = entries.map(([name, ms], i) => {
-    const width = Math.max(1, Math.round((100 * ms) / largest));
-    const color = kStageColors[i % kStageColors.length];
-    return `<div class="stage"><span class="name">${escapeHtml(name)}</span>` +
-           `<span class="bar" style="width:${width}%;background:${color}"></span>` +
-           `<span class="ms">${ms.toFixed(2)} ms</span></div>`;
+const kGroupNotes = {
+  frame: 'tracking thread (italic: alongside it, on a thread of its own)',
+  keyframe: 'local mapping, dense mapping and loop closing threads (inline when --sequential)',
+};
+
+function stageRow(row, largest, color, perKeyframe) {
+  const width = Math.max(1, Math.round((100 * row.ms) / largest));
+  const beside = !perKeyframe && row.thread !== 'tracking thread';
+  const times = row.count != null ? `, ${row.count} times` : '';
+  const classes = `name${row.depth ? ' step' : ''}${beside ? ' beside' : ''}`;
+  const title = escapeHtml(`${row.thread}${times}`);
+  return `<span class="${classes}" title="${title}">${escapeHtml(row.name)}</span>` +
+         `<span class="track"><span class="bar" style="width:${width}%;background:${color}"></span></span>` +
+         `<span class="ms">${row.ms.toFixed(2)} ms</span>` +
+         `<span class="count">${row.count != null && perKeyframe ? `&times;${row.count}` : ''}</span>`;
+}
+
+// groups: what groupStages (stages.js) returns. Each group is a captioned block of horizontal bars
+// on its own scale (its largest stage fills the width), names in full.
+export function showStages(element, groups, caption) {
+  const blocks = groups.map((group) => {
+    const perKeyframe = group.id === 'keyframe';
+    const rows = group.rows.map((row, i) =>
+      stageRow(row, Math.max(group.largest, 1e-6), kStageColors[i % kStageColors.length], perKeyframe));
+    const note = `${kGroupNotes[group.id] ?? ''}; bars to this group's own scale`;
+    return `<div class="stage-group" data-group="${group.id}">` +
+           `<div class="group-title">${escapeHtml(group.title)}</div>` +
+           `<div class="group-note">${escapeHtml(note)}</div>` +
+           `<div class="stages">${rows.join('')}</div></div>`;
   });
-  element.innerHTML = `<div class="caption">${escapeHtml(caption)}</div>${bars.join('')}`;
+  element.innerHTML = `<div class="caption">${escapeHtml(caption)}</div>${blocks.join('')}`;
 }
 
 // loops: [{keyframe, loop_keyframe, timestamp, correction_m, ...}]

@@ -2,6 +2,8 @@
 // playwright-core from web/package-lock.json). CTest runs one case per invocation:
 //   node viewer_browser_test.mjs view   --cli DRVSLAM --run RUN_DIR [--screenshot PNG]
 //   node viewer_browser_test.mjs report --cli DRVSLAM --run RUN_DIR [--screenshot PNG]
+//     (the report twice: with WebGL, then in a browser without it, screenshot PNG's name with
+//     "-nowebgl" before ".png")
 //   node viewer_browser_test.mjs live   --cli DRVSLAM --dataset SEQ --out OUT_DIR [--screenshot PNG]
 // A case exits 0 when every check holds, else 1 after printing what failed.
 import { spawn } from 'node:child_process';
@@ -13,6 +15,9 @@ const kChromium = process.env.DRVSLAM_CHROMIUM ?? '/usr/bin/chromium';
 // WebGL without a GPU: SwiftShader, the software renderer Chromium ships.
 const kChromiumArgs = ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
                        '--no-sandbox', '--disable-dev-shm-usage'];
+// No WebGL at all: no GPU and no software renderer for it, as on a machine without either.
+const kNoWebglArgs = ['--disable-gpu', '--disable-software-rasterizer', '--no-sandbox',
+                      '--disable-dev-shm-usage'];
 
 function parseArgs(argv) {
   const args = { case: argv[0] };
@@ -59,8 +64,8 @@ function startServing(cli, args) {
   return { child, url, output: () => output };
 }
 
-async function openBrowser() {
-  const browser = await chromium.launch({ executablePath: kChromium, args: kChromiumArgs });
+async function openBrowser(args = kChromiumArgs) {
+  const browser = await chromium.launch({ executablePath: kChromium, args });
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   const errors = [];
   page.on('console', (message) => {
@@ -108,6 +113,37 @@ async function mapCanvasVariance(page) {
   return page.evaluate(greyVarianceInPage, { canvasId: 'view3d' });
 }
 
+// The panels that need no WebGL: the figures, the stage chart in its two groups (per frame of
+// the tracking thread, per keyframe of the other threads, names in full) and the 2-D plots.
+async function checkPanels(page) {
+  const p = await page.evaluate(() => {
+    const names = (group) => [...document.querySelectorAll(`[data-group="${group}"] .name`)];
+    return {
+      figures: document.querySelectorAll('#figures tr').length,
+      groups: [...document.querySelectorAll('#stages .stage-group')].map((g) => g.dataset.group),
+      frame: names('frame').map((n) => n.textContent),
+      keyframe: names('keyframe').map((n) => n.textContent),
+      clipped: [...document.querySelectorAll('#stages .name')]
+        .filter((n) => n.scrollWidth > n.clientWidth + 1).map((n) => n.textContent),
+      plotsShown: !document.getElementById('plots').hidden,
+      loops: document.getElementById('loops').textContent,
+    };
+  });
+  check(p.figures >= 5, `figures table filled (${p.figures} rows)`);
+  check(p.groups.join(',') === 'frame,keyframe', `stage chart in two groups: ${p.groups.join(', ')}`);
+  check(p.frame[0] === 'total' && p.frame.includes('tracking') && !p.frame.includes('local_mapping'),
+        `per-frame group: ${p.frame.join(' ')}`);
+  check(p.keyframe.includes('local_mapping') && p.keyframe.includes('dense_keyframe') &&
+        !p.keyframe.includes('total'), `per-keyframe group: ${p.keyframe.join(' ')}`);
+  check(p.clipped.length === 0, `stage names in full (clipped: ${p.clipped.join(' ')})`);
+  check(p.loops.startsWith('loop closures'), `loop closures panel: "${p.loops}"`);
+  check(p.plotsShown, '2-D plots shown');
+  for (const id of ['plot-trajectory', 'plot-errors']) {
+    const variance = await page.evaluate(greyVarianceInPage, { canvasId: id });
+    check(variance > 5, `${id} drawn (grey-level variance ${variance.toFixed(1)})`);
+  }
+}
+
 // The checks of a finished run, whether served (view) or from report.html.
 async function checkFinishedRun(page, errors, runDir, screenshot, budget) {
   await page.waitForFunction(() => window.drvslamViewer?.ready === true, null, { timeout: 30000 });
@@ -115,6 +151,8 @@ async function checkFinishedRun(page, errors, runDir, screenshot, budget) {
   const v = await page.evaluate(() => ({ ...window.drvslamViewer }));
   console.log(`page counts: ${JSON.stringify(v)}`);
   check(v.failure === null, `page loaded its data (${v.failure})`);
+  check(v.webgl === true, `3-D view has WebGL (${v.webglProblem})`);
+  await checkPanels(page);
   const poses = countPoses(path.join(runDir, 'CameraTrajectory.txt'));
   check(poses > 0 && v.poses === poses, `trajectory poses drawn ${v.poses} = CameraTrajectory.txt ${poses}`);
   const keyframes = countPoses(path.join(runDir, 'KeyFrameTrajectory.txt'));
@@ -171,6 +209,32 @@ async function reportCase(args) {
     await checkFinishedRun(page, errors, args.run, args.screenshot ?? path.join(args.run, 'report.png'),
                            Infinity);
     check(fetched.length === 0, `report fetched nothing from the network (${fetched.join(', ')})`);
+  } finally {
+    await browser.close();
+  }
+  await checkReportWithoutWebgl(report, args.screenshot ?? path.join(args.run, 'report.png'));
+}
+
+// The report in a browser that has no WebGL: the 3-D panel says why, every other panel works.
+async function checkReportWithoutWebgl(report, screenshot) {
+  const { browser, page, errors } = await openBrowser(kNoWebglArgs);
+  try {
+    await page.goto(`file://${path.resolve(report)}`);
+    await page.waitForFunction(() => window.drvslamViewer?.ready === true, null, { timeout: 30000 });
+    const v = await page.evaluate(() => ({ ...window.drvslamViewer }));
+    console.log(`without WebGL: ${JSON.stringify(v)}`);
+    check(v.failure === null, `without WebGL: page loaded its data (${v.failure})`);
+    check(v.webgl === false && typeof v.webglProblem === 'string',
+          `without WebGL: page knows (${v.webglProblem})`);
+    const message = await page.textContent('#view3d-message').catch(() => '');
+    check(message.includes('3-D view unavailable') && message.includes(v.webglProblem ?? '?'),
+          `without WebGL: the 3-D panel says why: "${message.slice(0, 80)}..."`);
+    check(await page.isVisible('#view3d-message'), 'without WebGL: the note is visible');
+    await checkPanels(page);
+    const shot = screenshot.replace(/(\.png)?$/, '-nowebgl.png');
+    const variance = await screenshotVariance(page, shot);
+    check(variance > 20, `without WebGL: screenshot not blank (variance ${variance.toFixed(1)}) -> ${shot}`);
+    check(errors.length === 0, `without WebGL: no console errors (${errors.join(' | ')})`);
   } finally {
     await browser.close();
   }
