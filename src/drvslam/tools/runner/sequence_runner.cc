@@ -256,6 +256,9 @@ RunSummary RunSequence(const RunOptions& options,
       line.tracked = result.pose_valid;
       line.keyframes = system.GetMap().KeyFrameCount();
       line.map_points = system.GetMap().MapPointCount();
+      line.inliers = result.inliers;
+      line.keyframe = result.new_keyframe != nullptr;
+      if (system.Dynamic()) AddDynamicEvents(*system.Dynamic(), &line);
       frame_log->Append(line);
     }
     if (motion_truth && system.Dynamic()) {

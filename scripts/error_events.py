@@ -1,0 +1,150 @@
+#!/usr/bin/env python3
+"""Error over time beside a run's events: where a run's trajectory error comes from.
+
+Usage: error_events.py RUN_DIR [GROUND_TRUTH] [--window 15] [--worst 3] [--tsv FILE]
+
+RUN_DIR is a `drvslam run --frame-log RUN_DIR/frames.tsv` output folder or a benchmark run
+(`run_k/`, which has frames.tsv and eval.json). The ground truth defaults to the dataset's
+groundtruth.txt named in stats.json. The estimate is put in the ground truth's frame with the
+alignment eval.json holds (`drvslam eval --json`), so the per-frame errors are the ones the ATE
+summarises. Prints the worst stretches of --window frames (by mean error, not overlapping) with
+the events in them (masks, movers' share, features removed, keyframes, lost frames, unlabelled
+regions, carried masks), and with --tsv writes one line per frame: error and events.
+Only the standard library: it runs wherever python3 does.
+"""
+import argparse
+import bisect
+import json
+import math
+import os
+import sys
+
+
+def read_tum(path):
+    poses = []
+    with open(path) as f:
+        for line in f:
+            fields = line.split()
+            if not fields or fields[0].startswith("#") or len(fields) < 8:
+                continue
+            poses.append((float(fields[0]), [float(v) for v in fields[1:4]]))
+    poses.sort()
+    return poses
+
+
+def read_frame_log(path):
+    rows = {}
+    with open(path) as f:
+        header = f.readline().rstrip("\n").split("\t")
+        for line in f:
+            values = line.rstrip("\n").split("\t")
+            if len(values) != len(header):
+                continue
+            row = dict(zip(header, values))
+            rows[round(float(row["timestamp"]), 4)] = row
+    return header, rows
+
+
+def nearest(stamps, t, max_diff):
+    i = bisect.bisect_left(stamps, t)
+    best = None
+    for j in (i - 1, i):
+        if 0 <= j < len(stamps) and abs(stamps[j] - t) <= max_diff:
+            if best is None or abs(stamps[j] - t) < abs(stamps[best] - t):
+                best = j
+    return best
+
+
+def per_frame_errors(estimate, truth, alignment, max_diff=0.02):
+    rot, trans, scale = alignment["rotation"], alignment["translation"], alignment["scale"]
+    stamps = [t for t, _ in truth]
+    errors = []
+    for t, p in estimate:
+        j = nearest(stamps, t, max_diff)
+        if j is None:
+            continue
+        q = [scale * sum(rot[r][c] * p[c] for c in range(3)) + trans[r] for r in range(3)]
+        g = truth[j][1]
+        errors.append((t, math.sqrt(sum((q[k] - g[k]) ** 2 for k in range(3)))))
+    return errors
+
+
+def events_of(rows):
+    """Summary of the events in a stretch of frame-log rows."""
+    def total(key):
+        return sum(float(r.get(key, 0) or 0) for r in rows)
+
+    n = max(len(rows), 1)
+    parts = [
+        "lost %d" % sum(1 for r in rows if r.get("tracked") == "0"),
+        "keyframes %d" % total("keyframe"),
+        "objects %.1f/frame" % (total("objects") / n),
+        "moving %.1f/frame" % (total("moving") / n),
+        "movers' share %.2f" % (total("movers_share") / n),
+        "removed %.0f of %.0f features/frame" % (total("removed") / n, total("features") / n),
+        "unlabelled regions %d" % total("unlabelled"),
+        "carried masks %d frames" % sum(1 for r in rows if r.get("own_masks") == "0"),
+        "inliers %.0f/frame" % (total("inliers") / n),
+    ]
+    return ", ".join(parts)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("run_dir")
+    parser.add_argument("ground_truth", nargs="?")
+    parser.add_argument("--window", type=int, default=15)
+    parser.add_argument("--worst", type=int, default=3)
+    parser.add_argument("--tsv")
+    args = parser.parse_args()
+
+    def need(path, what):
+        if not os.path.isfile(path):
+            sys.exit("error: %s: %s not found" % (path, what))
+        return path
+
+    run = args.run_dir
+    truth_path = args.ground_truth
+    if truth_path is None:
+        stats = json.load(open(need(os.path.join(run, "stats.json"), "the run's stats")))
+        truth_path = os.path.join(stats.get("dataset", ""), "groundtruth.txt")
+    truth = read_tum(need(truth_path, "ground truth"))
+    estimate = read_tum(need(os.path.join(run, "CameraTrajectory.txt"), "the trajectory"))
+    alignment = json.load(open(need(os.path.join(run, "eval.json"), "eval --json output")))[
+        "alignment"]
+    header, log = read_frame_log(need(os.path.join(run, "frames.tsv"), "the frame log"))
+    errors = per_frame_errors(estimate, truth, alignment)
+    if not errors:
+        sys.exit("error: %s: no pose matches the ground truth in time" % run)
+    rmse = math.sqrt(sum(e * e for _, e in errors) / len(errors))
+    print("%d poses matched, ATE RMSE %.2f cm" % (len(errors), 100 * rmse))
+
+    taken = []
+    order = sorted(range(len(errors) - args.window + 1),
+                   key=lambda i: -sum(e for _, e in errors[i:i + args.window]))
+    for start in order:
+        if len(taken) == args.worst:
+            break
+        if any(abs(start - s) < args.window for s in taken):
+            continue
+        taken.append(start)
+    for rank, start in enumerate(taken, 1):
+        stretch = errors[start:start + args.window]
+        rows = [log[k] for k in (round(t, 4) for t, _ in stretch) if k in log]
+        frames = [int(r["frame"]) for r in rows]
+        mean = sum(e for _, e in stretch) / len(stretch)
+        span = "frames %d-%d" % (min(frames), max(frames)) if frames else "no frame-log rows"
+        print("worst %d: %s, t %.2f-%.2f s, mean error %.2f cm: %s" % (
+            rank, span, stretch[0][0] - errors[0][0], stretch[-1][0] - errors[0][0], 100 * mean,
+            events_of(rows)))
+    if args.tsv:
+        with open(args.tsv, "w") as out:
+            extra = [h for h in header if h not in ("timestamp", "wall_s")]
+            out.write("timestamp\terror_cm\t" + "\t".join(extra) + "\n")
+            for t, e in errors:
+                row = log.get(round(t, 4), {})
+                out.write("%.6f\t%.3f\t%s\n" % (t, 100 * e, "\t".join(row.get(h, "") for h in extra)))
+
+
+if __name__ == "__main__":
+    main()
