@@ -1,4 +1,5 @@
-// drvslam run: SLAM over a TUM-layout sequence (see DESIGN.md for the contract).
+// drvslam run: SLAM over a TUM-layout sequence (docs/running-on-your-data.md describes its
+// contract).
 #include <csignal>
 #include <cstdio>
 #include <optional>

@@ -2,7 +2,7 @@
 # CMAKE_UNITY_BUILD=ON: a few files per compiler run, so the heavy Eigen, OpenCV, Ceres and
 # GoogleTest headers are parsed once per batch, not once per file. A plain `cmake -S . -B build`
 # builds file by file, as before; both give the same program (tests/ and the sequential outputs
-# give byte-identical --sequential outputs: README, "Build").
+# give byte-identical --sequential outputs: docs/getting-started.md).
 # Files that define a helper of the same name as a sibling's in their anonymous namespaces would
 # clash in one batch: they are compiled on their own (a new clash is a compile error naming both
 # files; add one of them here).

@@ -1,7 +1,7 @@
 // The Python module `drvslam`: System (settings resolved as `drvslam run` resolves them) fed
 // numpy frames by any camera SDK, its trajectories as numpy arrays and as the CLI's files, and
 // the two helpers a folder-reading loop needs (read_image, associate). drvslam::Error becomes
-// drvslam.Error (a ValueError) with the same message. README.md "Python" shows the loop.
+// drvslam.Error (a ValueError) with the same message. docs/python.md shows the loop.
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

@@ -29,7 +29,7 @@ void ApplyOpenCvThreadBudget(int threads) {
 }
 
 int NiceOffset(BackgroundStage stage) {
-  // Chosen by realtime runs on 2 cores (README, Real time). The network keeps the tracking
+  // Chosen by realtime runs on 2 cores (docs/real-time.md). The network keeps the tracking
   // thread's priority because late masks cost accuracy (nice 5 tripled the ATE of a walking
   // sequence); local mapping and loop closing yield a little, the dense map the most. Lowering
   // them further (network 3, local mapping 6, dense 19) freed tracking's core on a quiet

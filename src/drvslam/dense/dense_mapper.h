@@ -1,7 +1,7 @@
-// DenseMapper: the dense mapping thread (DESIGN.md's pipeline). Tracking hands it every tracked
-// frame (kept in a short ring for the enhancement step) and each new keyframe, which waits for
-// the ordinary frames after it and is then queued. Per keyframe it first lets the depth vote
-// on the map (voxels it sees through lose evidence), then back-projects the depth along
+// DenseMapper: the dense mapping thread (docs/architecture.md, the pipeline). Tracking hands it
+// every tracked frame (kept in a short ring for the enhancement step) and each new keyframe, which
+// waits for the ordinary frames after it and is then queued. Per keyframe it first lets the depth
+// vote on the map (voxels it sees through lose evidence), then back-projects the depth along
 // undistorted rays, leaves out moving objects (masks grown along their depth) and flying
 // pixels, downsamples on the world voxel grid into the coarse map and adds the static key
 // objects - from the keyframe and its nearest ordinary frames on both sides, at full

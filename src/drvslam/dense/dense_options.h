@@ -1,6 +1,6 @@
-// DenseMapOptions: the DenseMap.* settings of the dense mapping thread (DESIGN.md): which depth
-// is trusted, which pixels are left out, the coarse leaf of the global map and the fine leaf
-// and frame count of the targeted enhancement of static key objects.
+// DenseMapOptions: the DenseMap.* settings of the dense mapping thread (docs/architecture.md):
+// which depth is trusted, which pixels are left out, the coarse leaf of the global map and the fine
+// leaf and frame count of the targeted enhancement of static key objects.
 #pragma once
 
 #include "drvslam/core/option_table.h"

@@ -11,6 +11,7 @@
 #include "drvslam/dynamic/dynamic_drawing.h"
 #include "drvslam/dynamic/feature_floor.h"
 #include "drvslam/dynamic/removal_policy.h"
+#include "drvslam/map/map_point.h"
 #include "drvslam/semantic/mask_lookup.h"
 #include "drvslam/semantic/mask_propagator.h"
 
@@ -316,10 +317,10 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
       carried_from_ = found.frame_index;
       carried_from_timestamp_ = found.timestamp;
     } else if (carried_from_ && previous_) {
-      out.instances = carrier_.Carry(previous_->instances, track_history_.back(), size);
+      out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
     }
   } else if (carried_from_ && previous_) {
-    out.instances = carrier_.Carry(previous_->instances, track_history_.back(), size);
+    out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
   }
   if (!carried_from_) {
     masks_->RecordWithoutMasks();
@@ -341,7 +342,7 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   begun_ = false;
   const std::shared_ptr<const FrameFeatures> extracted = frame.FeaturesPtr();
 
-  MotionRegions regions = ConstrainMotionRegions(frame, bgr);
+  MotionRegions regions = ConstrainMotionRegions(frame, bgr, depth);
   const Stopwatch removal_watch;  // steps 2 to 4 are timed together as "removal"
   const IdAssignment ids = AssignObjectIds(regions);
   std::vector<ObjectEvidence> objects = ClassifyMotionStates(*extracted, regions, ids);
@@ -365,7 +366,8 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
 }
 
 DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Frame& frame,
-                                                                       const cv::Mat& bgr) {
+                                                                       const cv::Mat& bgr,
+                                                                       const cv::Mat& depth) {
   const DynamicOptions& o = config_.options;
   MotionRegions regions;
   regions.size = bgr.size();
@@ -390,6 +392,8 @@ DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Fra
         classes_ && classes_->IsPotentiallyMoving(regions.instances[k].class_id);
   }
   const Stopwatch test_watch;
+  regions.segmented = regions.instances;
+  if (o.mask_completion && !depth.empty()) CompleteMasks(depth, &regions);
   RemovalPlan all_moving;
   all_moving.remove = regions.potentially_moving;
   regions.exclusion = RemovalMask(regions.instances, all_moving, regions.size, o);
@@ -401,6 +405,21 @@ DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Fra
   consistency_ms += test_watch.ElapsedMs();
   Record("motion_consistency", consistency_ms);
   return regions;
+}
+
+void DynamicFrontEnd::CompleteMasks(const cv::Mat& depth, MotionRegions* regions) {
+  const DynamicOptions& o = config_.options;
+  MaskCompletionOptions completion;
+  completion.margin = o.completion_margin;
+  completion.depth_step = o.completion_depth_step;
+  completion.depth_band = o.completion_depth_band;
+  for (std::size_t k = 0; k < regions->instances.size(); ++k) {
+    if (!regions->potentially_moving[k]) continue;
+    Instance& instance = regions->instances[k];
+    // The delivered mask may be shared (the segmenter's result, `segmented`): grow a copy.
+    instance.mask = instance.mask.clone();
+    report_.completed_pixels += CompleteMaskWithDepth(instance, depth, completion);
+  }
 }
 
 DynamicFrontEnd::FrameFlow DynamicFrontEnd::ComputeFlow(const cv::Mat& bgr) {
@@ -451,7 +470,12 @@ std::vector<FlowTrack> DynamicFrontEnd::TrackPreviousFeatures(const FlowImage& f
     points.push_back(keypoints[background[k]].pt);
     ids.push_back(background[k]);
   }
-  return consistency_.Track(previous_->flow, flow, points, ids);
+  std::vector<FlowTrack> tracks = consistency_.Track(previous_->flow, flow, points, ids);
+  for (FlowTrack& track : tracks) {
+    track.anchored = static_cast<std::size_t>(track.feature) < previous_anchored_.size() &&
+                     previous_anchored_[track.feature] != 0;
+  }
+  return tracks;
 }
 
 IdAssignment DynamicFrontEnd::AssignObjectIds(MotionRegions& regions) {
@@ -536,7 +560,9 @@ Frame DynamicFrontEnd::RemoveDynamicFeatures(Frame frame, const cv::Mat& depth,
                                           : report_.removed_unlabelled);
     outcome->removed.push_back(keypoints[i]);
   }
+  kept_rows_.clear();
   if (outcome->removed.empty()) return frame;
+  kept_rows_ = kept_rows;
   return Frame(frame.Id(), frame.Timestamp(),
                KeptFeatures(*features, kept_rows, outcome->kept, depth));
 }
@@ -565,6 +591,7 @@ void DynamicFrontEnd::RecordStatistics(const MotionRegions& regions,
   stats_.removed_unlabelled += report_.removed_unlabelled;
   stats_.unlabelled_regions += removal.regions.size();
   stats_.map_points_culled += report_.map_points_culled;
+  stats_.mask_pixels_completed += report_.completed_pixels;
   if (report_.sharpness.blurred) ++stats_.frames_blurred;
   if (report_.unlabelled_weighed) {
     switch (report_.unlabelled_evidence.verdict) {
@@ -609,8 +636,13 @@ void DynamicFrontEnd::RememberFrame(MotionRegions regions, std::vector<ObjectEvi
     if (regions.potentially_moving[k] && moving) moving_instances_.push_back(regions.instances[k]);
   }
   previous_share_ = share;
-  previous_ = Previous{std::move(regions.flow), std::move(extracted), regions.instances,
-                       std::move(regions.exclusion), depth.empty() ? cv::Mat() : depth.clone()};
+  previous_anchored_.clear();  // AfterTracking fills it when this frame is tracked
+  previous_ = Previous{std::move(regions.flow),
+                       std::move(extracted),
+                       regions.instances,
+                       std::move(regions.segmented),
+                       std::move(regions.exclusion),
+                       depth.empty() ? cv::Mat() : depth.clone()};
   report_.instances = std::move(regions.instances);
   report_.objects = std::move(objects);
   report_.unlabelled = std::move(unlabelled);
@@ -655,8 +687,17 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
 }
 
 void DynamicFrontEnd::AfterTracking(const Frame& tracked) {
-  if (!config_.options.cull_moving_points) return;
-  culler_.Observe(tracked, report_.instances, report_.objects);
+  if (config_.options.cull_moving_points) {
+    culler_.Observe(tracked, report_.instances, report_.objects);
+  }
+  if (!previous_ || !previous_->features) return;
+  previous_anchored_.assign(previous_->features->Keypoints().size(), 0);
+  for (std::size_t i = 0; i < tracked.Size(); ++i) {
+    const std::shared_ptr<MapPoint>& point = tracked.map_points[i];
+    if (!point || tracked.outlier[i] || point->IsBad()) continue;
+    const std::size_t extracted = kept_rows_.empty() ? i : static_cast<std::size_t>(kept_rows_[i]);
+    if (extracted < previous_anchored_.size()) previous_anchored_[extracted] = 1;
+  }
 }
 
 void DynamicFrontEnd::WriteDebugPicture(const cv::Mat& bgr, const std::vector<cv::KeyPoint>& kept,

@@ -1,5 +1,5 @@
-// DynamicFrontEnd: the dynamic-object stage between ORB extraction and tracking (DESIGN.md's
-// pipeline). Per frame:
+// DynamicFrontEnd: the dynamic-object stage between ORB extraction and tracking
+// (docs/architecture.md, the pipeline). Per frame:
 //   BeginFrame (before extraction): hands the image to the segmentation thread (AsyncSegmenter)
 //     and returns the feature target, raised when people covered much of the previous frame.
 //   MovingSkipMask (before extraction): where the objects believed moving are, so the extractor
@@ -45,6 +45,7 @@
 
 #include "drvslam/core/side_worker.h"
 #include "drvslam/core/timing.h"
+#include "drvslam/dynamic/depth_mask_completion.h"
 #include "drvslam/dynamic/dynamic_options.h"
 #include "drvslam/dynamic/frame_sharpness.h"
 #include "drvslam/dynamic/motion_consistency.h"
@@ -93,7 +94,8 @@ struct DynamicFrameReport {
   bool pose_ok = false;  // the frame-to-frame pose (reprojection test) was fitted
   int tracks = 0;
   int moving_points = 0;
-  double share = 0.0;  // image share of potentially-moving objects
+  double share = 0.0;         // image share of potentially-moving objects
+  long completed_pixels = 0;  // pixels depth completion added to potentially-moving masks
   bool large_share = false;
   int feature_target = 0;
   bool keyframe_likely = false;  // tracking expected this frame to become a keyframe
@@ -136,6 +138,7 @@ struct DynamicStats {
   std::size_t features_kept_back = 0;
   std::size_t frames_floor = 0;
   std::size_t map_points_culled = 0;
+  std::size_t mask_pixels_completed = 0;  // by depth completion, over the run
   // Extraction skipped on moving objects: frames with a skip mask and their mean image share.
   std::size_t frames_skip_mask = 0;
   double skip_share_mean = 0.0;
@@ -178,7 +181,9 @@ class DynamicFrontEnd {
   // four steps, one call each: ConstrainMotionRegions, AssignObjectIds, ClassifyMotionStates,
   // RemoveDynamicFeatures.
   Frame Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth);
-  // `tracked`: the frame after successful tracking (its map-point slots filled).
+  // `tracked`: the frame after successful tracking (its map-point slots filled). Files the map
+  // points on still objects and notes which features were map inliers (the next frame's
+  // anchored tracks).
   void AfterTracking(const Frame& tracked);
 
   const DynamicFrameReport& LastReport() const { return report_; }
@@ -189,8 +194,9 @@ class DynamicFrontEnd {
     FlowImage flow;
     std::shared_ptr<const FrameFeatures> features;  // before removal
     std::vector<Instance> instances;
-    cv::Mat exclusion;  // potentially-moving masks, dilated
-    cv::Mat depth;      // CV_32FC1 metres (may be empty)
+    std::vector<Instance> segmented;  // the masks as delivered, before depth completion
+    cv::Mat exclusion;                // potentially-moving masks, dilated
+    cv::Mat depth;                    // CV_32FC1 metres (may be empty)
   };
 
   // The image's optical flow and the previous frame's features tracked into it: step 1's first
@@ -205,9 +211,12 @@ class DynamicFrontEnd {
 
   // What step 1 leaves for the later ones.
   struct MotionRegions {
-    cv::Size size;                         // the image's
-    FlowImage flow;                        // this frame's, for the next frame's tracks
-    std::vector<Instance> instances;       // this frame's masks (own or carried)
+    cv::Size size;                    // the image's
+    FlowImage flow;                   // this frame's, for the next frame's tracks
+    std::vector<Instance> instances;  // this frame's masks (own or carried), completed
+    // The same before depth completion: what is carried to later frames, so completion never
+    // compounds over the frames a mask is carried.
+    std::vector<Instance> segmented;
     std::vector<bool> potentially_moving;  // per instance: its class can move
     cv::Mat exclusion;                     // the potentially-moving masks, dilated
     MotionConsistencyResult motion;        // tracks from the previous frame, tested
@@ -223,10 +232,14 @@ class DynamicFrontEnd {
   // Step 1, motion-region constraint: the frame's masks (own or carried), its flow tracks from
   // the previous frame, and their test against the camera's motion outside the masks of
   // classes that can move. Fills the report's sharpness.
-  MotionRegions ConstrainMotionRegions(const Frame& frame, const cv::Mat& bgr);
+  MotionRegions ConstrainMotionRegions(const Frame& frame, const cv::Mat& bgr,
+                                       const cv::Mat& depth);
+  // Grows each potentially-moving instance's mask over its depth-connected body
+  // (Dynamic.maskCompletion); the masks are copied first, `segmented` keeps the delivered ones.
+  void CompleteMasks(const cv::Mat& depth, MotionRegions* regions);
   // The flow half of step 1 (FrameFlow). Runs on flow_helper_ while the frame's features are
-  // extracted, else on the tracking thread: it touches only the previous frame and blur_, which
-  // nothing else uses until FinishFlow.
+  // extracted, else on the tracking thread: it touches only the previous frame (and its anchored
+  // flags) and blur_, which nothing else uses until FinishFlow.
   FrameFlow ComputeFlow(const cv::Mat& bgr);
   // The frame's FrameFlow: the helper's (waiting for it, or running it here when the helper
   // got no core) or computed now.
@@ -301,6 +314,12 @@ class DynamicFrontEnd {
   double previous_share_ = 0.0;
   std::optional<Previous> previous_;
   std::vector<Instance> moving_instances_;  // the last frame's objects judged moving
+  // This frame's kept features: the extracted index of each (empty: none removed, the same
+  // order). Set by Filter, read by AfterTracking.
+  std::vector<int> kept_rows_;
+  // Per extracted feature of the previous frame: 1 when its tracking matched it to a map point
+  // as an inlier (FlowTrack::anchored). Empty when that frame was not tracked.
+  std::vector<uint8_t> previous_anchored_;
   double skip_share_sum_ = 0.0;
   std::set<int> moving_class_ids_;
   std::ofstream objects_csv_;

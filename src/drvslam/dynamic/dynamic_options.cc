@@ -98,6 +98,14 @@ const OptionTable<DynamicOptions>& DynamicOptionTable() {
               "Raised target = base * min(this, 1 / (1 - share)).")
         .Int("maskDilation", &D::mask_dilation, Bounds::In(0, 100).Note("pixels"),
              "Added around masks for removal.")
+        .Bool("maskCompletion", &D::mask_completion,
+              "Grow potentially-moving masks over the depth-connected pixels of their body.")
+        .Real("completionMargin", &D::completion_margin, Bounds::In(0, 2),
+              "Mask completion: box growth on each side, share of its size.")
+        .Real("completionDepthStep", &D::completion_depth_step, Bounds::Above(0).Note("metres"),
+              "Mask completion: depth difference of neighbouring pixels of one surface.")
+        .Real("completionDepthBand", &D::completion_depth_band, Bounds::Above(0).Note("metres"),
+              "Mask completion: farthest depth from the instance's median depth.")
         // Moving things no detector names.
         .Bool("unlabelledMotion", &D::unlabelled_motion, "Remove moving things no detector names.")
         .Real("clusterRadius", &D::cluster_radius, Bounds::Above(0).Note("pixels"),

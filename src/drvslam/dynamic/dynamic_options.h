@@ -97,6 +97,12 @@ struct DynamicOptions {
   double max_feature_boost = 2.0;  // Dynamic.maxFeatureBoost: target = base * min(this,
                                    // 1 / (1 - share))
   int mask_dilation = 4;           // Dynamic.maskDilation: pixels added around masks for removal
+  // Dynamic.maskCompletion: potentially-moving masks are grown over the depth-connected pixels
+  // of their body (depth_mask_completion.h): the arm or legs a network's mask misses.
+  bool mask_completion = true;
+  double completion_margin = 0.15;      // Dynamic.completionMargin: box growth, share of its size
+  double completion_depth_step = 0.04;  // Dynamic.completionDepthStep: metres between neighbours
+  double completion_depth_band = 0.6;   // Dynamic.completionDepthBand: metres from the median
 
   // Moving things no detector names.
   bool unlabelled_motion = true;     // Dynamic.unlabelledMotion

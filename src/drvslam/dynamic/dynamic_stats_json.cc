@@ -43,7 +43,8 @@ nlohmann::json DynamicStatsJson(const DynamicStats& s) {
             {"waits", s.keyframe_waits},
             {"waits_fresh", s.keyframe_waits_fresh}}},
           {"unlabelled_regions", s.unlabelled_regions},
-          {"map_points_culled", s.map_points_culled}};
+          {"map_points_culled", s.map_points_culled},
+          {"mask_pixels_completed", s.mask_pixels_completed}};
 }
 
 nlohmann::json DynamicSegmentationJson(const DynamicStats& stats) {

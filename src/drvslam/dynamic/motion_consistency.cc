@@ -267,10 +267,17 @@ void MotionConsistency::TestReprojection(const cv::Mat& prev_depth, const Pinhol
                             static_cast<float>(p.z()));
     has_depth[i] = true;
   }
+  // The anchored pairs when there are enough of them, else every model pair.
+  int anchored = 0;
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (has_depth[i] && tracks[i].model_pair && tracks[i].anchored) ++anchored;
+  }
+  result->pose_anchored = anchored >= options_.min_model_pairs;
   std::vector<cv::Point3f> object;
   std::vector<cv::Point2f> image;
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     if (!has_depth[i] || !tracks[i].model_pair) continue;
+    if (result->pose_anchored && !tracks[i].anchored) continue;
     object.push_back(points[i]);
     image.push_back(cur_pixels[i]);
   }

@@ -10,6 +10,9 @@
 // 2-D correspondence; the frame-to-frame camera motion is fitted to them (PnP in RANSAC) and
 // every track's reprojection error tests it in both image directions, whatever the baseline
 // (the epipolar test is blind along epipolar lines and ill-posed without translation).
+// When enough tracks start on features the previous frame's tracking matched to map points as
+// inliers (FlowTrack::anchored), the pose is fitted to those alone: in a crowd, movers may be
+// most of the tracks, and a fit to all of them can follow the crowd (docs/dynamic-handling.md).
 // The models are fitted on undistorted positions (lens distortion bends epipolar lines).
 // Deterministic: OpenCV's RANSAC starts from a fixed random state.
 #pragma once
@@ -42,6 +45,9 @@ struct FlowTrack {
   cv::Point2f prev;
   cv::Point2f cur;
   bool model_pair = false;  // used to fit the scene model
+  // The previous feature was a map-point inlier of the previous frame's tracked pose: the
+  // local map's static consensus, not this frame's tracks, vouches for it (set by the caller).
+  bool anchored = false;
   // Epipolar distance (or homography transfer error), undistorted pixels.
   double residual = 0.0;
   bool moving = false;  // residual above the threshold of the model used
@@ -66,6 +72,9 @@ struct MotionConsistencyResult {
   bool pose_ok = false;    // the frame-to-frame pose was fitted (needs depth)
   int pose_pairs = 0;      // model pairs with depth offered to the pose's RANSAC
   int pose_inliers = 0;
+  // The pose was fitted to anchored model pairs only (enough of them had depth): the ego-motion
+  // comes from what the map tracked as static, not from the tracks being judged.
+  bool pose_anchored = false;
   int reprojection_moving = 0;  // tracks flagged by the reprojection test
 };
 

@@ -53,8 +53,11 @@ UnlabelledEvidence WeighUnlabelledEvidence(const MotionConsistencyResult& motion
   // unexplained everywhere, which no single point's residual should be blamed for.
   std::vector<double> epipolar;
   std::vector<double> reprojection;
+  // With a map-anchored pose the static pairs are the anchored ones: unanchored pairs may be
+  // movers no mask covers, whose residuals are the evidence, not the noise.
+  const bool anchored = motion.pose_ok && motion.pose_anchored;
   for (const FlowTrack& track : motion.tracks) {
-    if (!track.model_pair) continue;
+    if (!track.model_pair || (anchored && !track.anchored)) continue;
     epipolar.push_back(track.residual);
     if (track.reprojection >= 0.0) reprojection.push_back(track.reprojection);
   }
@@ -67,6 +70,8 @@ UnlabelledEvidence WeighUnlabelledEvidence(const MotionConsistencyResult& motion
       options.reprojection_threshold, options.residual_factor * Median(std::move(reprojection)));
 
   evidence.tracks = motion.tracks;
+  int anchored_tested = 0;
+  int anchored_moving = 0;
   for (FlowTrack& track : evidence.tracks) {
     track.moving = track.moving && track.residual > evidence.epipolar_threshold;
     track.reprojection_moving =
@@ -75,9 +80,19 @@ UnlabelledEvidence WeighUnlabelledEvidence(const MotionConsistencyResult& motion
     if (motion.model == MotionModel::kNone && track.reprojection < 0.0) continue;
     ++evidence.tested;
     if (track.MovingBest()) ++evidence.moving;
+    if (track.anchored) {
+      ++anchored_tested;
+      if (track.MovingBest()) ++anchored_moving;
+    }
   }
+  // The camera failed when what should be still moves: with a map-anchored pose, the share of
+  // the anchored tracks that move (blur, rolling shutter and a bad calibration break the map's
+  // own static points; movers no mask covers are mostly not anchored, so a crowd does not
+  // count); without one, the share of all tested tracks.
   evidence.moving_share =
-      evidence.tested > 0 ? static_cast<double>(evidence.moving) / evidence.tested : 0.0;
+      anchored && anchored_tested > 0
+          ? static_cast<double>(anchored_moving) / anchored_tested
+          : (evidence.tested > 0 ? static_cast<double>(evidence.moving) / evidence.tested : 0.0);
   if (evidence.moving_share > options.max_unlabelled_share) {
     evidence.verdict = UnlabelledVerdict::kCameraFailure;
     evidence.tracks.clear();

@@ -1,5 +1,5 @@
 // How `drvslam eval` presents its results: the JSON document whose keys are part of the CLI
-// contract (DESIGN.md) and the human-readable table printed on stdout.
+// contract (docs/running-on-your-data.md) and the human-readable table printed on stdout.
 #pragma once
 
 #include <nlohmann/json.hpp>
