@@ -9,6 +9,7 @@
 #include "drvslam/dense/point_cloud_io.h"
 #include "drvslam/map/frame_features.h"
 #include "drvslam/map/keyframe.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -240,8 +241,7 @@ TEST(DenseMapper, ExportsOnRequestWhileMapping) {
   DenseMapper mapper(camera, DenseMapOptions(), /*sequential=*/false);
   mapper.AddKeyFrame(BookFrame(camera, 0, 0.0), nullptr);
   mapper.AddKeyFrame(BookFrame(camera, 1, 0.3), nullptr);
-  const std::string folder =
-      (std::filesystem::temp_directory_path() / "drvslam_dense_export").string();
+  const std::string folder = (testing::ProcessTempFolder() / "dense_export").string();
   const DenseExport first = ExportDenseMap(mapper, folder);  // the thread may still run
   mapper.Shutdown();
   const DenseExport last = ExportDenseMap(mapper, folder);

@@ -10,6 +10,7 @@
 #include "dense_test_frames.h"
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_mapper.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -55,8 +56,7 @@ TEST(DenseOctoMap, OccupiedLeavesLieOnTheWallAndTheWalkersSpaceIsFree) {
     mapper.AddKeyFrame(WalkFrame(camera, k, -0.2 + 0.04 * k, -0.3 + 0.06 * k), nullptr);
   }
   mapper.Shutdown();
-  const std::string folder =
-      (std::filesystem::temp_directory_path() / "drvslam_dense_octomap").string();
+  const std::string folder = (testing::ProcessTempFolder() / "dense_octomap").string();
   const DenseExport exported = ExportDenseMap(mapper, folder);
   ASSERT_TRUE(exported.octomap.has_value());
   EXPECT_GT(exported.octomap->bytes, 0u);
@@ -98,8 +98,7 @@ TEST(DenseOctoMap, ResolutionZeroWritesNone) {
   options.octomap_resolution = 0.0;
   DenseMapper mapper(camera, options, true);
   mapper.Shutdown();
-  const std::string folder =
-      (std::filesystem::temp_directory_path() / "drvslam_dense_no_octomap").string();
+  const std::string folder = (testing::ProcessTempFolder() / "dense_no_octomap").string();
   std::filesystem::remove_all(folder);
   EXPECT_FALSE(ExportDenseMap(mapper, folder).octomap.has_value());
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(folder) / "dense_map.bt"));

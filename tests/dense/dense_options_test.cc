@@ -7,12 +7,13 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
 
 std::string WriteYaml(const std::string& name, const std::string& body) {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  const std::string path = (testing::ProcessTempFolder() / name).string();
   std::ofstream(path) << "%YAML:1.0\n" << body;
   return path;
 }

@@ -14,6 +14,7 @@
 #include "drvslam/synth/synth_generator.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "drvslam/tools/truth/dense_evaluation.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -23,9 +24,7 @@ namespace fs = std::filesystem;
 class DenseRunTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ =
-        new fs::path(fs::temp_directory_path() / ("drvslam_dense_run_" + std::to_string(getpid())));
-    fs::remove_all(*root_);
+    root_ = new fs::path(drvslam::testing::UniqueTempFolder("drvslam_dense_run"));
     synth::SynthOptions options;
     options.scenario = "walking_xyz";
     options.frames = 60;

@@ -13,6 +13,7 @@
 #include "dense_test_frames.h"
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_mapper.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -62,8 +63,7 @@ TEST(DenseSurface, ANoisyWallOccupiesOnlyTheLeavesItLiesIn) {
   DenseMapper mapper(camera, options, /*sequential=*/true);
   for (long k = 0; k < 8; ++k) mapper.AddKeyFrame(NoisyWallFrame(camera, kWallDepth, k), nullptr);
   mapper.Shutdown();
-  const std::string folder =
-      (std::filesystem::temp_directory_path() / "drvslam_dense_noisy_wall").string();
+  const std::string folder = (testing::ProcessTempFolder() / "dense_noisy_wall").string();
   const DenseExport exported = ExportDenseMap(mapper, folder);
   ASSERT_TRUE(exported.octomap.has_value());
 

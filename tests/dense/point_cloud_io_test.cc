@@ -9,12 +9,13 @@
 #include <fstream>
 
 #include "drvslam/core/error.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
 
 std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / name).string();
+  return (testing::ProcessTempFolder() / name).string();
 }
 
 DenseCloud SampleCloud() {

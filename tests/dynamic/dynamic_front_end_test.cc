@@ -7,73 +7,28 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <condition_variable>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
-#include "drvslam/core/coco_classes.h"
 #include "drvslam/core/error.h"
 #include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/feature/orb_extractor.h"
 #include "drvslam/map/map_point.h"
 #include "plane_scene.h"
+#include "scripted_segmenters.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
 
 namespace fs = std::filesystem;
 using test::Camera;
+using test::GatedSegmenter;
+using test::HoldingSegmenter;
 using test::Plane;
-
-// Returns prepared segmentations by frame index.
-class ScriptedSegmenter : public Segmenter {
- public:
-  // sleep_ms: the network's latency per frame.
-  explicit ScriptedSegmenter(std::vector<Segmentation> frames, int sleep_ms = 0)
-      : frames_(std::move(frames)), sleep_ms_(sleep_ms) {
-    for (std::string_view name : CocoClassNames()) names_.emplace_back(name);
-  }
-  Segmentation Segment(const cv::Mat&, double timestamp, std::size_t index) override {
-    if (sleep_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(sleep_ms_));
-    Segmentation s = frames_.at(index);
-    s.timestamp = timestamp;
-    s.frame_index = index;
-    return s;
-  }
-  std::string Name() const override { return "scripted"; }
-  const std::vector<std::string>& ClassNames() const override { return names_; }
-
- private:
-  std::vector<Segmentation> frames_;
-  int sleep_ms_;
-  std::vector<std::string> names_;
-};
-
-// ScriptedSegmenter whose calls after the first block until Open(): segmentation that lags.
-class GatedSegmenter : public ScriptedSegmenter {
- public:
-  using ScriptedSegmenter::ScriptedSegmenter;
-  Segmentation Segment(const cv::Mat& bgr, double timestamp, std::size_t index) override {
-    if (index > 0) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      opened_.wait(lock, [&] { return open_; });
-    }
-    return ScriptedSegmenter::Segment(bgr, timestamp, index);
-  }
-  void Open() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    open_ = true;
-    opened_.notify_all();
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable opened_;
-  bool open_ = false;
-};
+using test::ScriptedSegmenter;
 
 struct Sequence {
   std::vector<test::Rendered> images;
@@ -144,6 +99,18 @@ class DynamicFrontEndTest : public ::testing::Test {
                 bool keyframe_likely = false) {
     stage.BeginFrame(0.033 * f, sequence.bgr[f], keyframe_likely);
     stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+  }
+
+  // Waits until the network has dealt with every frame handed to it (segmented, failed or
+  // dropped), so that the next frame finds it idle: an order, where a sleep of a few passes'
+  // length only made it likely. False only after 30 s, a hang guard.
+  static bool AwaitIdleNetwork(const DynamicFrontEnd& stage) {
+    for (int wait = 0; wait < 6000; ++wait) {
+      const AsyncSegmenterStats s = stage.Stats().segmentation.value();
+      if (s.segmented + s.failed + s.dropped == s.submitted) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
   }
 
   static int CountOn(const Frame& frame, const cv::Mat& labels, int label) {
@@ -251,10 +218,7 @@ TEST_F(DynamicFrontEndTest, LargeShareKeepsAStandingPersonAndCullsItsPointsWhenI
 
 TEST_F(DynamicFrontEndTest, WritesDebugPicturesAndObjectRows) {
   const Sequence sequence = Render(3, false, nullptr, [](int f) { return 0.04 * f; });
-  const fs::path dir = fs::temp_directory_path() /
-                       ("drvslam_dynamic_debug_" +
-                        std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
-  fs::remove_all(dir);
+  const fs::path dir = drvslam::testing::UniqueTempFolder("drvslam_dynamic_debug");
   DynamicFrontEndConfig config;
   config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks);
   config.sequential = true;
@@ -339,21 +303,33 @@ TEST_F(DynamicFrontEndTest, NoFeaturesAreExtractedOnObjectsBelievedMoving) {
 }
 
 TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNever) {
-  // A 300 ms network. Frame 1 is expected to become a keyframe, but frame 0 is ahead of it on
+  // A 100 ms network. Frame 1 is expected to become a keyframe, but frame 0 is ahead of it on
   // the network: a whole forward pass away, it does not wait. Frame 2 is expected too and the
-  // network is idle when it comes: it waits (up to 1 s here) and gets its own masks. Frame 3 is
-  // not expected: it never waits.
+  // network is idle when it comes: it waits (up to 1 s, 10 times its 100 ms pass) and gets its
+  // own masks. Frame 3 is not expected: it never waits.
+  // Frames 0, 1 and 3 are held on the network until released, so that they are still running
+  // when frames 1 and 3 ask (a 300 ms pass against a ~30 ms frame made that likely before).
   const Sequence sequence = Render(4, false, nullptr, [](int f) { return -0.05 * f; });
-  DynamicFrontEnd stage(RealtimeConfig(sequence, 300, 1000.0), 1000, map_, nullptr);
+  DynamicFrontEndConfig config = RealtimeConfig(sequence, 100, 1000.0);
+  const auto network =
+      std::make_shared<HoldingSegmenter>(sequence.masks, 100, std::set<std::size_t>{0, 1, 3});
+  config.segmenter = network;
+  DynamicFrontEnd stage(config, 1000, map_, nullptr);
   const bool likely[] = {false, true, true, false};
   const bool own[] = {false, false, true, false};
   for (int f = 0; f < 4; ++f) {
-    // Before frame 2 the network finishes frames 0 and 1 and goes idle.
-    if (f == 2) std::this_thread::sleep_for(std::chrono::milliseconds(900));
+    if (f == 2) {
+      // Before frame 2 the network finishes frames 0 and 1 and goes idle (awaited: a 900 ms
+      // sleep for two 300 ms passes stood for it before).
+      network->Release(0);
+      network->Release(1);
+      ASSERT_TRUE(AwaitIdleNetwork(stage));
+    }
     RunFrame(stage, sequence, f, likely[f]);
     EXPECT_EQ(stage.LastReport().own_masks, own[f]) << "frame " << f;
     stage.NoteKeyFrame(likely[f]);
   }
+  network->Release(3);
   const DynamicStats stats = stage.Stats();
   EXPECT_EQ(stats.keyframe_waits, 1u);
   EXPECT_EQ(stats.keyframe_waits_fresh, 1u);
@@ -377,19 +353,22 @@ TEST_F(DynamicFrontEndTest, RealtimeKeyFrameWaitIsBounded) {
 }
 
 TEST_F(DynamicFrontEndTest, RealtimeKeyFrameDoesNotWaitForMasksDueAfterItsBound) {
-  // A 300 ms network and a 20 ms bound. Frame 0 is segmented first (its pass sets the estimate).
+  // A 1 s network and a 300 ms bound. Frame 0 is segmented first (its pass sets the estimate).
   // Frame 1 is a likely keyframe that the idle network is about to take, but its masks are
-  // due a whole pass later: waiting 20 ms could not bring them, so it does not wait at all.
+  // due a whole pass later: waiting 300 ms could not bring them, so it does not wait at all.
+  // (A 300 ms network and a 20 ms bound before: a frame that did not wait had to take under
+  // 19 ms, which a loaded machine's pauses of ~30 ms break. Measured 0.4-0.6 ms; the bound
+  // below, 290 ms, is 500 times that.)
   const Sequence sequence = Render(2, false, nullptr, [](int) { return 0.0; });
   StageTimings timings;
-  DynamicFrontEnd stage(RealtimeConfig(sequence, 300, 20.0), 1000, map_, &timings);
+  DynamicFrontEnd stage(RealtimeConfig(sequence, 1000, 300.0), 1000, map_, &timings);
   RunFrame(stage, sequence, 0, false);
-  std::this_thread::sleep_for(std::chrono::milliseconds(600));  // frame 0's pass is done
+  ASSERT_TRUE(AwaitIdleNetwork(stage));  // frame 0's pass is done (a 600 ms sleep before)
   RunFrame(stage, sequence, 1, true);
   EXPECT_FALSE(stage.LastReport().own_masks);
   EXPECT_EQ(stage.Stats().keyframe_waits, 0u);
   const TimingSummary wait = timings.Summaries().at("segmentation_wait");
-  EXPECT_LT(wait.max_ms, 19.0);
+  EXPECT_LT(wait.max_ms, 290.0);
 }
 
 TEST_F(DynamicFrontEndTest, RealtimeCarriesLaggingMasksOntoAWalkingPersonByItsTracks) {

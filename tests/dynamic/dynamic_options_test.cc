@@ -10,6 +10,7 @@
 #include <string>
 
 #include "drvslam/core/error.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -75,10 +76,11 @@ TEST(DynamicOptionsTest, BadValuesNameTheirKey) {
 class DynamicOptionsFileTest : public ::testing::Test {
  protected:
   std::string Write(const std::string& body) {
+    // In this process's own folder: gtest's random_seed() is 0 unless shuffling, so a name made
+    // of it was the same for every run and user.
     const std::filesystem::path path =
-        std::filesystem::temp_directory_path() /
-        ("drvslam_dynamic_options_" +
-         std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+        testing::ProcessTempFolder() /
+        (std::string("dynamic_options_") +
          ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml");
     std::ofstream out(path);
     out << "%YAML:1.0\n" << body;

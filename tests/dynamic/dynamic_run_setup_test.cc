@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "drvslam/core/error.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -17,11 +18,11 @@ namespace fs = std::filesystem;
 class DynamicRunSetupTest : public ::testing::Test {
  protected:
   void SetUp() override {
+    // A new folder of this process's own (gtest's random_seed() is 0 unless shuffling: a name
+    // made of it was the same for every run and user).
     root_ =
-        fs::temp_directory_path() /
-        ("drvslam_run_setup_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root_);
+        testing::UniqueTempFolder(std::string("drvslam_run_setup_") +
+                                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(root_ / "plain");
     fs::create_directories(root_ / "synthetic" / "masks");
     std::ofstream(root_ / "synthetic" / "instances.txt")

@@ -17,6 +17,7 @@
 #include "drvslam/synth/synth_generator.h"
 #include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/tools/truth/mask_carry_eval.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -181,9 +182,8 @@ constexpr std::size_t kFirstWalkingFrame = 25;
 const Walking& WalkingSequence() {
   static const Walking walking = [] {
     Walking w;
-    const fs::path folder =
-        fs::temp_directory_path() / ("drvslam_mask_carrier_test_" + std::to_string(getpid()));
-    fs::remove_all(folder);
+    const fs::path root = drvslam::testing::UniqueTempFolder("drvslam_mask_carrier_test");
+    const fs::path folder = root / "seq";
     synth::SynthOptions options;
     options.scenario = "walking_xyz";
     options.frames = kFirstWalkingFrame + 16;
@@ -199,7 +199,7 @@ const Walking& WalkingSequence() {
       w.bgrs.push_back(frame.bgr);
       w.truth.push_back(truth.Segment(frame.bgr, frame.timestamp, i));
     }
-    fs::remove_all(folder);
+    fs::remove_all(root);
     return w;
   }();
   return walking;

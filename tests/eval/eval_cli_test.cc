@@ -14,6 +14,7 @@
 #include "drvslam/io/trajectory_io.h"
 #include "test_support/cli_run.h"
 #include "test_support/missing_data.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -27,8 +28,7 @@ class EvalCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!fs::exists(DRVSLAM_CLI)) DRVSLAM_MISSING_TEST_DATA() << "CLI not built at " << DRVSLAM_CLI;
-    dir_ = fs::temp_directory_path() / ("drvslam_eval_cli_" + std::to_string(getpid()));
-    fs::create_directories(dir_);
+    dir_ = drvslam::testing::UniqueTempFolder("drvslam_eval_cli");
     Trajectory gt, est;
     for (int k = 0; k < 150; ++k) {
       const double t = 1000.0 + k / 30.0;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "drvslam/core/error.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -64,7 +65,7 @@ TEST(EvalReportTest, AlignmentReadsBackForAlignmentFrom) {
   ate.alignment.R = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   ate.alignment.t = Eigen::Vector3d(0.5, -1.25, 2.0);
   const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "drvslam_eval_alignment_test.json";
+      testing::ProcessTempFolder() / "drvslam_eval_alignment_test.json";
   WriteEvalReportJson(path.string(), ate, SomeRpe());
   const Alignment read = ReadEvalAlignment(path.string());
   EXPECT_LT((read.R - ate.alignment.R).norm(), 1e-12);
@@ -85,8 +86,7 @@ TEST(EvalReportTest, AlignmentReadsBackForAlignmentFrom) {
 }
 
 TEST(EvalReportTest, JsonFileRoundTripsAndBadPathIsAnError) {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "drvslam_eval_report_test.json";
+  const std::filesystem::path path = testing::ProcessTempFolder() / "drvslam_eval_report_test.json";
   WriteEvalReportJson(path.string(), SomeAte(), SomeRpe());
   std::ifstream in(path);
   const nlohmann::json json = nlohmann::json::parse(in);

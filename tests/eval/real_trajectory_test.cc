@@ -11,6 +11,7 @@
 #include "drvslam/eval/rpe.h"
 #include "eval_test_util.h"
 #include "test_support/missing_data.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -39,7 +40,7 @@ class RealTrajectoryTest : public ::testing::TestWithParam<const char*> {
 
 TEST_P(RealTrajectoryTest, MovedCopyThroughAFileHasZeroError) {
   const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / (std::string("drvslam_eval_") + GetParam() + ".txt");
+      testing::ProcessTempFolder() / (std::string("drvslam_eval_") + GetParam() + ".txt");
   WriteTumTrajectory(file.string(), InOtherWorld(gt_, SomeWorldChange()));
   const Trajectory est = ReadTumTrajectory(file.string());
   std::filesystem::remove(file);

@@ -7,6 +7,7 @@
 
 #include "drvslam/core/error.h"
 #include "eval_test_util.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -53,7 +54,7 @@ TEST_F(TrajectoryPlotTest, DrawsBothTrajectoriesAndTheErrors) {
 
 TEST_F(TrajectoryPlotTest, WritesAPngAndReportsBadPaths) {
   const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "drvslam_trajectory_plot_test.plot";
+      testing::ProcessTempFolder() / "drvslam_trajectory_plot_test.plot";
   WriteTrajectoryPlot(path.string(), gt_, est_, ate_);  // PNG whatever the extension
   const cv::Mat read = cv::imread(path.string());
   ASSERT_FALSE(read.empty());

@@ -214,9 +214,11 @@ TEST(DemoTest, ModelAddsCutOutRowsSegmentedByTheNetwork) {
 
 TEST(DemoTest, TooFewFramesIsAnError) {
   DemoOptions options;
-  options.out_dir = (fs::temp_directory_path() / "drvslam_demo_too_few").string();
+  const fs::path root = test::FreshTempFolder("drvslam_demo_too_few");
+  options.out_dir = (root / "out").string();
   options.frames = 5;
   EXPECT_THROW(RunDemo(options), Error);
+  fs::remove_all(root);
 }
 
 }  // namespace

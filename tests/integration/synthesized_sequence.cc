@@ -1,12 +1,11 @@
 #include "synthesized_sequence.h"
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "drvslam/io/trajectory_io.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam::test {
 
@@ -19,12 +18,7 @@ std::string ReadFile(const fs::path& path) {
   return buffer.str();
 }
 
-fs::path FreshTempFolder(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / (name + "_" + std::to_string(getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root);
-  return root;
-}
+fs::path FreshTempFolder(const std::string& name) { return testing::UniqueTempFolder(name); }
 
 std::string SynthesizeSequence(const fs::path& root, const std::string& synth_args) {
   const fs::path log = root / "synth.log";

@@ -17,7 +17,8 @@ namespace drvslam::test {
 // The whole file as a string; empty when it cannot be read.
 std::string ReadFile(const std::filesystem::path& path);
 
-// temp_directory_path()/<name>_<pid>, emptied and created.
+// A new, empty folder temp_directory_path()/<name>_<pid>_<random> (testing::UniqueTempFolder):
+// never one that another run or user already holds. Every call makes a new one.
 std::filesystem::path FreshTempFolder(const std::string& name);
 
 // Runs `drvslam --log-level warn synth <synth_args> --out <root>/seq`. Returns an empty string on

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "drvslam/core/error.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -17,10 +18,7 @@ namespace fs = std::filesystem;
 
 class TextLinesTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("drvslam_text_lines_" + std::to_string(getpid()));
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = drvslam::testing::UniqueTempFolder("drvslam_text_lines"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   std::string Write(const std::string& name, const std::string& text) {

@@ -9,6 +9,7 @@
 
 #include "drvslam/core/error.h"
 #include "test_support/error_message.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -39,10 +40,7 @@ TEST(LoopClosingOptionsTest, BadValuesNameTheirKey) {
 
 class LoopClosingOptionsFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    path_ = std::filesystem::temp_directory_path() /
-            ("drvslam_loop_options_" + std::to_string(::getpid()) + ".yaml");
-  }
+  void SetUp() override { path_ = drvslam::testing::ProcessTempFolder() / "loop_options.yaml"; }
   void TearDown() override { std::filesystem::remove(path_); }
   void Write(const std::string& body) {
     std::ofstream out(path_);

@@ -11,6 +11,7 @@
 
 #include "drvslam/core/error.h"
 #include "test_support/error_message.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -18,10 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path WriteSettings(const std::string& name, const std::string& body) {
-  const fs::path folder =
-      fs::temp_directory_path() / ("drvslam_reloc_options_" + std::to_string(getpid()));
-  fs::create_directories(folder);
-  const fs::path path = folder / name;
+  const fs::path path = drvslam::testing::ProcessTempFolder() / name;
   std::ofstream(path) << "%YAML:1.0\n" << body;
   return path;
 }

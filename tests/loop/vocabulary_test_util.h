@@ -2,8 +2,6 @@
 // hand-built vocabulary, and a scratch folder.
 #pragma once
 
-#include <unistd.h>
-
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +12,7 @@
 
 #include "drvslam/loop/bow_vocabulary.h"
 #include "drvslam/loop/vocabulary_builder.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam::test {
 
@@ -76,11 +75,10 @@ inline BowVocabulary TinyVocabulary() {
   return builder.Finish();
 }
 
-// A fresh, empty folder under the system's temporary directory.
+// An empty folder in this process's own temporary folder (testing::ProcessTempFolder, removed
+// when the process ends): never one another run or user holds.
 inline std::string ScratchFolder(const std::string& name) {
-  const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() /
-      ("drvslam_loop_test_" + name + "_" + std::to_string(getpid()));
+  const std::filesystem::path folder = drvslam::testing::ProcessTempFolder() / ("loop_" + name);
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   return folder.string();

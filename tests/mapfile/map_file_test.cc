@@ -25,6 +25,7 @@
 #include "drvslam/tracking/tracker_options.h"
 #include "test_support/error_message.h"
 #include "test_support/missing_data.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -91,11 +92,7 @@ void WriteBytes(const fs::path& path, const std::string& bytes) {
 
 class MapFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("drvslam_map_file_test_" + std::to_string(getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
+  void SetUp() override { folder_ = drvslam::testing::UniqueTempFolder("drvslam_map_file_test"); }
   void TearDown() override { fs::remove_all(folder_); }
 
   // The build's vocabulary, or false (the test is skipped) when it was not built.

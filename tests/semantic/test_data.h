@@ -2,12 +2,11 @@
 // empty string when the file is absent so the test can skip with a clear message.
 #pragma once
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <string>
 
 #include "test_support/missing_data.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam::testing {
 
@@ -24,11 +23,10 @@ inline std::string OpenCvData(const std::string& name) {
   return ExistingOrEmpty(std::string(DRVSLAM_OPENCV_DATA_DIR) + "/" + name);
 }
 
-// A fresh, empty folder under the system temp folder for one test. The process id keeps
-// tests that CTest runs in parallel processes out of each other's folders.
+// An empty folder for one test in this process's own temporary folder (ProcessTempFolder,
+// removed when the process ends): apart from other test processes' and other users' folders.
 inline std::filesystem::path FreshTempDir(const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("drvslam_" + name + "_" + std::to_string(getpid()));
+  const std::filesystem::path dir = ProcessTempFolder() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -6,14 +6,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "test_support/temp_folder.h"
+
 namespace drvslam::synth::testing {
 
 TestFolder::TestFolder(const std::string& name) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                     ("drvslam_synth_" + name + "_" + std::to_string(getpid()));
-  std::filesystem::remove_all(path);
-  std::filesystem::create_directories(path);
-  path_ = path.string();
+  path_ = drvslam::testing::UniqueTempFolder("drvslam_synth_" + name).string();
 }
 
 TestFolder::~TestFolder() {

@@ -1,16 +1,18 @@
 // ScratchFolderTest: a fixture that gives every test case its own empty folder, dir_, and removes
-// it when the case ends. CTest runs the cases of one binary in parallel processes, so the folder's
-// name holds the process id besides the suite's and the case's names.
+// it when the case ends. CTest runs the cases of one binary in parallel processes: the folder is
+// made by UniqueTempFolder (the process id and a random part besides the suite's and the case's
+// names), so it is never one that another process or user holds.
 #pragma once
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "test_support/temp_folder.h"
 
 namespace drvslam::testing {
 
@@ -23,12 +25,9 @@ class ScratchFolderTest : public ::testing::Test {
   // A fixture that needs more in the folder calls this first from its own SetUp().
   void SetUp() override {
     const ::testing::TestInfo& info = *::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("drvslam_") + info.test_suite_name() + "_" +
-                       std::to_string(::getpid()) + "_" + info.name();
+    std::string name = std::string("drvslam_") + info.test_suite_name() + "_" + info.name();
     std::replace(name.begin(), name.end(), '/', '_');  // parameterized names hold slashes
-    dir_ = std::filesystem::temp_directory_path() / name;
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    dir_ = UniqueTempFolder(name);
     for (const std::string& subfolder : subfolders_) {
       std::filesystem::create_directories(dir_ / subfolder);
     }

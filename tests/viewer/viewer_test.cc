@@ -21,6 +21,7 @@
 #include "drvslam/tools/viewer/viewer_json.h"
 #include "drvslam/tools/viewer/viewer_page.h"
 #include "drvslam/tools/viewer/web_server.h"
+#include "test_support/temp_folder.h"
 
 namespace drvslam {
 namespace {
@@ -28,11 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path FreshDir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("drvslam_viewer_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return drvslam::testing::UniqueTempFolder("drvslam_viewer_" + name);
 }
 
 struct CliResult {
