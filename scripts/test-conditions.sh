@@ -146,11 +146,6 @@ for condition in "${conditions[@]}"; do
       else
         echo "test-conditions: note: no $repo/../shared: the clone has none either"
       fi
-      # The viewer page's npm packages: scripts/install-deps.sh runs `npm ci` for a clone without
-      # them, which needs the network; this checkout's copy is used when there is one.
-      if [ -d "$repo/web/node_modules" ]; then
-        ln -s "$(cd "$repo/web/node_modules" && pwd -P)" "$clone_dir/drvslam/web/node_modules"
-      fi
       run_suite fresh-clone "$clone_dir/drvslam" bash scripts/test.sh
       [ "${KEEP_CLONE:-0}" != "0" ] && echo "test-conditions: kept $clone_dir"
       ;;
