@@ -4,7 +4,7 @@
 // lens distortion; the path run 3x faster) has nothing that moves, so every "moving" point is
 // the camera's fault. Dynamic handling on (geometry alone, and with the ground-truth masks, an
 // oracle that here has no people) must track at least as many frames as off, with an ATE
-// within 1.1x.
+// within 1.1x, and geometry alone must remove only a small share of the features.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -57,6 +57,11 @@ TEST_F(RealCameraGuardTest, DynamicHandlingNeverTracksWorseThanOff) {
             0u);
   const nlohmann::json json =
       nlohmann::json::parse(test::ReadFile(root_ / "geometry" / "stats.json"));
+  // Nothing moves, so what geometry removes is the camera's error: a small share. Measured
+  // 0.87 % of the features on a 200-frame copy of this sequence, 0.12 % before unlabelled motion
+  // was judged against the map-anchored camera motion; bounded at 3 %.
+  ASSERT_GT(stats.features_extracted, 0u);
+  EXPECT_LT(static_cast<double>(stats.features_removed) / stats.features_extracted, 0.03);
   EXPECT_TRUE(json["dynamic"]["unlabelled"]["frames_suppressed"].contains("blur"));
   EXPECT_TRUE(json["dynamic"]["features"].contains("kept_back"));
 }
