@@ -18,16 +18,6 @@
 namespace drvslam {
 namespace {
 
-void CheckMasks(const std::vector<Instance>& instances, const cv::Size& size,
-                std::size_t frame_index) {
-  for (const Instance& instance : instances) {
-    if (instance.mask.size() != size || instance.mask.type() != CV_8UC1) {
-      throw Error("segmentation of frame " + std::to_string(frame_index) +
-                  ": an instance mask is not CV_8UC1 of the image's size");
-    }
-  }
-}
-
 // Why `p` (a feature on the removal mask of objects) is removed: the first removed instance
 // under it, else (the mask's dilated margin) the first whose grown box holds it.
 RemovalCandidate DescribeObjectRemoval(const cv::Point2f& p, const std::vector<Instance>& instances,
@@ -244,98 +234,6 @@ void DynamicFrontEnd::NoteKeyFrame(bool became_keyframe) {
   if (report_.own_masks) ++stats_.keyframes_own_masks;
 }
 
-Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
-  Segmentation segmentation;
-  if (masks_) {
-    const Stopwatch wait;
-    if (!config_.realtime) {
-      report_.own_masks = true;
-    } else {
-      AwaitKeyFrameMasks();
-    }
-    segmentation = masks_->MasksFor(next_index_, timestamp, bgr);
-    Record("segmentation_wait", wait.ElapsedMs());
-    // The network's own time for this frame (on the segmentation thread, or inline when
-    // sequential), when these are the frame's own masks.
-    if (const auto own = async_->TryGet(next_index_)) Record("segmentation", own->segment_ms);
-  }
-  CheckMasks(segmentation.instances, bgr.size(), next_index_);
-  return segmentation;
-}
-
-void DynamicFrontEnd::AwaitKeyFrameMasks() {
-  // Only when the network is expected to finish this very image within the bound: a wait that
-  // cannot bring the frame's own masks would only delay tracking (and make the camera's next
-  // frame replace the one after it).
-  const double wait_ms = config_.segmentation.keyframe_wait_ms;
-  if (report_.keyframe_likely && wait_ms > 0.0) {
-    const std::optional<double> expected_ms = async_->ExpectedWaitMs(next_index_);
-    if (expected_ms && *expected_ms <= wait_ms) {
-      ++stats_.keyframe_waits;
-      if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
-    }
-  }
-  report_.own_masks = async_->TryGet(next_index_) != nullptr;
-}
-
-Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& size,
-                                              const std::vector<FlowTrack>& tracks) {
-  const Stopwatch watch;
-  std::vector<PointMotion> motions;
-  motions.reserve(tracks.size());
-  for (const FlowTrack& track : tracks) motions.push_back({track.prev, track.cur});
-  track_history_.push_back(std::move(motions));
-  while (track_history_.size() > static_cast<std::size_t>(config_.segmentation.carry_frames)) {
-    track_history_.pop_front();
-  }
-  AwaitKeyFrameMasks();
-  Segmentation out;
-  out.timestamp = timestamp;
-  out.frame_index = next_index_;
-  out.image_size = size;
-  const MaskSource::Newest newest = masks_->NewestFor(next_index_, size);
-  if (newest.masks) CheckMasks(newest.masks->segmentation.instances, size, next_index_);
-  if (newest.own) {
-    out.instances = newest.masks->segmentation.instances;
-    carried_from_ = next_index_;
-    carried_from_timestamp_ = timestamp;
-    masks_->RecordFresh();
-    Record("segmentation_wait", watch.ElapsedMs());
-    Record("segmentation", newest.masks->segment_ms);
-    return out;
-  }
-  if (newest.masks) {
-    const Segmentation& found = newest.masks->segmentation;
-    const std::size_t lag = next_index_ - found.frame_index;
-    if ((!carried_from_ || found.frame_index > *carried_from_) && lag <= track_history_.size()) {
-      // Newer masks than the carried ones: through each frame's tracks since theirs.
-      std::vector<const std::vector<PointMotion>*> steps;
-      for (std::size_t step = track_history_.size() - lag; step < track_history_.size(); ++step) {
-        steps.push_back(&track_history_[step]);
-      }
-      out.instances = carrier_.CarryThrough(found.instances, steps, size);
-      carried_from_ = found.frame_index;
-      carried_from_timestamp_ = found.timestamp;
-    } else if (carried_from_ && previous_) {
-      out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
-    }
-  } else if (carried_from_ && previous_) {
-    out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
-  }
-  if (!carried_from_) {
-    masks_->RecordWithoutMasks();
-    Record("segmentation_wait", watch.ElapsedMs());
-    return out;
-  }
-  const std::size_t age = next_index_ - *carried_from_;
-  // Not re-detected for too long: the objects expire (the ID tracker may still remember them).
-  if (age > static_cast<std::size_t>(config_.segmentation.carry_frames)) out.instances.clear();
-  const double carry_ms = watch.ElapsedMs();
-  masks_->RecordCarried(age, (timestamp - carried_from_timestamp_) * 1000.0, carry_ms);
-  Record("segmentation_wait", carry_ms);
-  return out;
-}
-
 // The paper's four steps, in order; each leaves what the next one needs.
 Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& depth) {
   if (!begun_) throw Error("DynamicFrontEnd: Filter called without BeginFrame");
@@ -405,21 +303,6 @@ DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Fra
   consistency_ms += test_watch.ElapsedMs();
   Record("motion_consistency", consistency_ms);
   return regions;
-}
-
-void DynamicFrontEnd::CompleteMasks(const cv::Mat& depth, MotionRegions* regions) {
-  const DynamicOptions& o = config_.options;
-  MaskCompletionOptions completion;
-  completion.margin = o.completion_margin;
-  completion.depth_step = o.completion_depth_step;
-  completion.depth_band = o.completion_depth_band;
-  for (std::size_t k = 0; k < regions->instances.size(); ++k) {
-    if (!regions->potentially_moving[k]) continue;
-    Instance& instance = regions->instances[k];
-    // The delivered mask may be shared (the segmenter's result, `segmented`): grow a copy.
-    instance.mask = instance.mask.clone();
-    report_.completed_pixels += CompleteMaskWithDepth(instance, depth, completion);
-  }
 }
 
 DynamicFrontEnd::FrameFlow DynamicFrontEnd::ComputeFlow(const cv::Mat& bgr) {
@@ -567,65 +450,6 @@ Frame DynamicFrontEnd::RemoveDynamicFeatures(Frame frame, const cv::Mat& depth,
                KeptFeatures(*features, kept_rows, outcome->kept, depth));
 }
 
-void DynamicFrontEnd::RecordStatistics(const MotionRegions& regions,
-                                       const std::vector<ObjectEvidence>& objects,
-                                       const RemovalOutcome& removal,
-                                       std::size_t features_extracted) {
-  const DynamicOptions& o = config_.options;
-  const MotionConsistencyResult& motion = regions.motion;
-  const bool model_ok = motion.model != MotionModel::kNone;
-  report_.model = motion.model;
-  report_.pose_ok = motion.pose_ok;
-  report_.tracks = static_cast<int>(motion.tracks.size());
-  report_.moving_points = motion.moving_points;
-  report_.share = removal.plan.share;
-  report_.large_share = removal.plan.large_share;
-  report_.features_extracted = static_cast<int>(features_extracted);
-  ++stats_.frames;
-  if (model_ok) ++stats_.frames_with_model;
-  if (motion.model == MotionModel::kHomography) ++stats_.frames_homography;
-  if (removal.plan.large_share) ++stats_.frames_large_share;
-  stats_.features_extracted += features_extracted;
-  stats_.features_removed += removal.removed.size();
-  stats_.removed_on_objects += report_.removed_on_objects;
-  stats_.removed_unlabelled += report_.removed_unlabelled;
-  stats_.unlabelled_regions += removal.regions.size();
-  stats_.map_points_culled += report_.map_points_culled;
-  stats_.mask_pixels_completed += report_.completed_pixels;
-  if (report_.sharpness.blurred) ++stats_.frames_blurred;
-  if (report_.unlabelled_weighed) {
-    switch (report_.unlabelled_evidence.verdict) {
-      case UnlabelledVerdict::kTrusted:
-        break;
-      case UnlabelledVerdict::kBlurred:
-        ++stats_.unlabelled_suppressed_blur;
-        break;
-      case UnlabelledVerdict::kMisfit:
-        ++stats_.unlabelled_suppressed_misfit;
-        break;
-      case UnlabelledVerdict::kCameraFailure:
-        ++stats_.unlabelled_suppressed_camera;
-        break;
-    }
-    if (report_.unlabelled_evidence.epipolar_threshold > (motion.model == MotionModel::kHomography
-                                                              ? o.homography_threshold
-                                                              : o.epipolar_threshold) ||
-        report_.unlabelled_evidence.reprojection_threshold > o.reprojection_threshold) {
-      ++stats_.frames_threshold_raised;
-    }
-  }
-  stats_.unlabelled_regions_pending += report_.unlabelled_pending;
-  stats_.features_kept_back += report_.kept_back;
-  if (report_.kept_back > 0) ++stats_.frames_floor;
-  for (const ObjectEvidence& object : objects) {
-    if (!object.potentially_moving) continue;
-    ++stats_.object_frames;
-    if (object.moving) ++stats_.moving_object_frames;
-    moving_class_ids_.insert(object.track_id);
-  }
-  stats_.ids_issued = moving_class_ids_.size();
-}
-
 void DynamicFrontEnd::RememberFrame(MotionRegions regions, std::vector<ObjectEvidence> objects,
                                     std::vector<MovingRegion> unlabelled,
                                     std::shared_ptr<const FrameFeatures> extracted,
@@ -698,64 +522,6 @@ void DynamicFrontEnd::AfterTracking(const Frame& tracked) {
     const std::size_t extracted = kept_rows_.empty() ? i : static_cast<std::size_t>(kept_rows_[i]);
     if (extracted < previous_anchored_.size()) previous_anchored_[extracted] = 1;
   }
-}
-
-void DynamicFrontEnd::WriteDebugPicture(const cv::Mat& bgr, const std::vector<cv::KeyPoint>& kept,
-                                        const std::vector<cv::KeyPoint>& removed) const {
-  const cv::Mat picture =
-      DrawDynamicFrame(bgr, report_.instances, report_.objects, report_.unlabelled, kept, removed);
-  char name[64];
-  std::snprintf(name, sizeof(name), "frame_%06zu.png", report_.frame_index);
-  const std::string path = (std::filesystem::path(config_.debug_dir) / name).string();
-  if (!cv::imwrite(path, picture)) throw Error(path + ": cannot write the debug picture");
-}
-
-void DynamicFrontEnd::WriteObjectRows() {
-  for (std::size_t k = 0; k < report_.objects.size(); ++k) {
-    const ObjectEvidence& e = report_.objects[k];
-    const Instance& instance = report_.instances[k];
-    char row[512];
-    std::snprintf(row, sizeof(row),
-                  "%zu,%.6f,%d,%s,%d,%d,%d,%d,%d,%.4f,%d,%d,%.4f,%d,%d,%.4f,%d,%d,%d,%d,%d,%.4f,%d,"
-                  "%s,%d\n",
-                  report_.frame_index, report_.timestamp, e.track_id,
-                  NormalizeClassName(instance.class_name).c_str(), instance.source_id,
-                  e.potentially_moving, e.predecessor, e.ring_features, e.ring_matched, e.delta,
-                  e.tracks, e.moving_tracks, e.moving_share, e.reprojected_tracks,
-                  e.reprojection_moving_tracks, e.reprojection_share, e.moving_delta_rule,
-                  e.moving_share_rule, e.moving_reprojection_rule, e.moving_combined_rule, e.moving,
-                  report_.share, report_.large_share, MotionModelName(report_.model),
-                  report_.pose_ok);
-    objects_csv_ << row;
-  }
-  objects_csv_.flush();
-}
-
-void DynamicFrontEnd::WriteFrameRow() {
-  const DynamicFrameReport& r = report_;
-  const UnlabelledEvidence& u = r.unlabelled_evidence;
-  char row[512];
-  std::snprintf(
-      row, sizeof(row),
-      "%zu,%.6f,%s,%d,%d,%d,%.2f,%.2f,%d,%s,%.4f,%.3f,%.3f,%d,%d,%.4f,%zu,%d,%d,%d,%d,%d\n",
-      r.frame_index, r.timestamp, MotionModelName(r.model), r.pose_ok, r.tracks, r.moving_points,
-      r.sharpness.sharpness, r.sharpness.reference, r.sharpness.blurred,
-      r.unlabelled_weighed ? UnlabelledVerdictName(u.verdict) : "none", u.inlier_share,
-      u.epipolar_threshold, u.reprojection_threshold, u.tested, u.moving, u.moving_share,
-      r.unlabelled.size(), r.unlabelled_pending, r.features_extracted, r.removed_on_objects,
-      r.removed_unlabelled, r.kept_back);
-  frames_csv_ << row;
-  frames_csv_.flush();
-}
-
-DynamicStats DynamicFrontEnd::Stats() const {
-  DynamicStats stats = stats_;
-  stats.skip_share_mean = stats.frames_skip_mask > 0
-                              ? skip_share_sum_ / static_cast<double>(stats.frames_skip_mask)
-                              : 0.0;
-  if (async_) stats.segmentation = async_->Stats();
-  if (masks_) stats.latency = masks_->Latency();
-  return stats;
 }
 
 }  // namespace drvslam

@@ -1,0 +1,130 @@
+// DynamicFrontEnd, its masks (dynamic_front_end.h): the frame's own masks or, with --realtime,
+// the newest ones carried to it, and their completion with depth.
+#include <string>
+
+#include "drvslam/core/error.h"
+#include "drvslam/dynamic/dynamic_front_end.h"
+
+namespace drvslam {
+namespace {
+
+void CheckMasks(const std::vector<Instance>& instances, const cv::Size& size,
+                std::size_t frame_index) {
+  for (const Instance& instance : instances) {
+    if (instance.mask.size() != size || instance.mask.type() != CV_8UC1) {
+      throw Error("segmentation of frame " + std::to_string(frame_index) +
+                  ": an instance mask is not CV_8UC1 of the image's size");
+    }
+  }
+}
+
+}  // namespace
+
+Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
+  Segmentation segmentation;
+  if (masks_) {
+    const Stopwatch wait;
+    if (!config_.realtime) {
+      report_.own_masks = true;
+    } else {
+      AwaitKeyFrameMasks();
+    }
+    segmentation = masks_->MasksFor(next_index_, timestamp, bgr);
+    Record("segmentation_wait", wait.ElapsedMs());
+    // The network's own time for this frame (on the segmentation thread, or inline when
+    // sequential), when these are the frame's own masks.
+    if (const auto own = async_->TryGet(next_index_)) Record("segmentation", own->segment_ms);
+  }
+  CheckMasks(segmentation.instances, bgr.size(), next_index_);
+  return segmentation;
+}
+
+void DynamicFrontEnd::AwaitKeyFrameMasks() {
+  // Only when the network is expected to finish this very image within the bound: a wait that
+  // cannot bring the frame's own masks would only delay tracking (and make the camera's next
+  // frame replace the one after it).
+  const double wait_ms = config_.segmentation.keyframe_wait_ms;
+  if (report_.keyframe_likely && wait_ms > 0.0) {
+    const std::optional<double> expected_ms = async_->ExpectedWaitMs(next_index_);
+    if (expected_ms && *expected_ms <= wait_ms) {
+      ++stats_.keyframe_waits;
+      if (async_->WaitFor(next_index_, wait_ms)) ++stats_.keyframe_waits_fresh;
+    }
+  }
+  report_.own_masks = async_->TryGet(next_index_) != nullptr;
+}
+
+Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& size,
+                                              const std::vector<FlowTrack>& tracks) {
+  const Stopwatch watch;
+  std::vector<PointMotion> motions;
+  motions.reserve(tracks.size());
+  for (const FlowTrack& track : tracks) motions.push_back({track.prev, track.cur});
+  track_history_.push_back(std::move(motions));
+  while (track_history_.size() > static_cast<std::size_t>(config_.segmentation.carry_frames)) {
+    track_history_.pop_front();
+  }
+  AwaitKeyFrameMasks();
+  Segmentation out;
+  out.timestamp = timestamp;
+  out.frame_index = next_index_;
+  out.image_size = size;
+  const MaskSource::Newest newest = masks_->NewestFor(next_index_, size);
+  if (newest.masks) CheckMasks(newest.masks->segmentation.instances, size, next_index_);
+  if (newest.own) {
+    out.instances = newest.masks->segmentation.instances;
+    carried_from_ = next_index_;
+    carried_from_timestamp_ = timestamp;
+    masks_->RecordFresh();
+    Record("segmentation_wait", watch.ElapsedMs());
+    Record("segmentation", newest.masks->segment_ms);
+    return out;
+  }
+  if (newest.masks) {
+    const Segmentation& found = newest.masks->segmentation;
+    const std::size_t lag = next_index_ - found.frame_index;
+    if ((!carried_from_ || found.frame_index > *carried_from_) && lag <= track_history_.size()) {
+      // Newer masks than the carried ones: through each frame's tracks since theirs.
+      std::vector<const std::vector<PointMotion>*> steps;
+      for (std::size_t step = track_history_.size() - lag; step < track_history_.size(); ++step) {
+        steps.push_back(&track_history_[step]);
+      }
+      out.instances = carrier_.CarryThrough(found.instances, steps, size);
+      carried_from_ = found.frame_index;
+      carried_from_timestamp_ = found.timestamp;
+    } else if (carried_from_ && previous_) {
+      out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
+    }
+  } else if (carried_from_ && previous_) {
+    out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
+  }
+  if (!carried_from_) {
+    masks_->RecordWithoutMasks();
+    Record("segmentation_wait", watch.ElapsedMs());
+    return out;
+  }
+  const std::size_t age = next_index_ - *carried_from_;
+  // Not re-detected for too long: the objects expire (the ID tracker may still remember them).
+  if (age > static_cast<std::size_t>(config_.segmentation.carry_frames)) out.instances.clear();
+  const double carry_ms = watch.ElapsedMs();
+  masks_->RecordCarried(age, (timestamp - carried_from_timestamp_) * 1000.0, carry_ms);
+  Record("segmentation_wait", carry_ms);
+  return out;
+}
+
+void DynamicFrontEnd::CompleteMasks(const cv::Mat& depth, MotionRegions* regions) {
+  const DynamicOptions& o = config_.options;
+  MaskCompletionOptions completion;
+  completion.margin = o.completion_margin;
+  completion.depth_step = o.completion_depth_step;
+  completion.depth_band = o.completion_depth_band;
+  for (std::size_t k = 0; k < regions->instances.size(); ++k) {
+    if (!regions->potentially_moving[k]) continue;
+    Instance& instance = regions->instances[k];
+    // The delivered mask may be shared (the segmenter's result, `segmented`): grow a copy.
+    instance.mask = instance.mask.clone();
+    report_.completed_pixels += CompleteMaskWithDepth(instance, depth, completion);
+  }
+}
+
+}  // namespace drvslam
