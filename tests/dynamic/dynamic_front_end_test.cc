@@ -338,6 +338,33 @@ TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNev
   EXPECT_EQ(stats.keyframes_own_masks, 1u);
 }
 
+TEST_F(DynamicFrontEndTest, RealtimeNetworkBacksOffWhenFramesAreSkipped) {
+  // Frames 0-7 at 30 Hz, each segmented before the next comes; frame 8 is skipped, so frame 9
+  // arrives two periods after frame 7 and is not handed to the network (it rests one pass).
+  // With Segmentation.backoffPasses 0 every frame goes to the network.
+  const Sequence sequence = Render(10, false, nullptr, [](int) { return 0.0; });
+  for (const double backoff_passes : {1.0, 0.0}) {
+    DynamicFrontEndConfig config = RealtimeConfig(sequence, 40, 0.0);
+    config.segmentation.backoff_passes = backoff_passes;
+    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    for (const int f : {0, 1, 2, 3, 4, 5, 6, 7, 9}) {
+      RunFrame(stage, sequence, f);
+      ASSERT_TRUE(AwaitIdleNetwork(stage));
+    }
+    const DynamicStats stats = stage.Stats();
+    if (backoff_passes > 0.0) {
+      ASSERT_TRUE(stats.pacing.has_value());
+      EXPECT_EQ(stats.pacing->backoffs, 1u);
+      EXPECT_EQ(stats.pacing->frames_held, 1u);
+      EXPECT_EQ(stats.segmentation->submitted, 8u);
+      EXPECT_FALSE(stage.LastReport().own_masks);
+    } else {
+      EXPECT_FALSE(stats.pacing.has_value());
+      EXPECT_EQ(stats.segmentation->submitted, 9u);
+    }
+  }
+}
+
 TEST_F(DynamicFrontEndTest, RealtimeKeyFrameWaitIsBounded) {
   // keyframeWaitMs 20 against a 600 ms network: the likely keyframe gives up and goes on.
   const Sequence sequence = Render(1, false, nullptr, [](int) { return 0.0; });

@@ -59,6 +59,30 @@ TEST(LoopCloserTest, SequentialClosesTheLoopOnceAndAdjustsTheMap) {
   EXPECT_LT(scene.MeanPositionError(), 0.35 * drift_before);
 }
 
+TEST(LoopCloserTest, ARejectedCandidateIsRecordedWithHowFarItGot) {
+  test::LoopScene scene;
+  HookCounts counts;
+  LoopClosingOptions options;
+  options.min_total_matches = 100000;  // the true loop cannot pass the last check
+  const LoopClosingStats stats = CloseLoops(scene, /*sequential=*/true, &counts, options);
+  // Not closed at keyframe 14, the loop is detected again at keyframe 15.
+  EXPECT_EQ(stats.detections, 2);
+  EXPECT_EQ(stats.rejected, 2);
+  EXPECT_EQ(stats.corrections, 0);
+  ASSERT_EQ(stats.rejections.size(), 2u);
+  EXPECT_EQ(stats.rejections[1].keyframe_id, scene.KeyFrameAt(15)->Id());
+  const LoopRejection& rejection = stats.rejections[0];
+  EXPECT_EQ(rejection.keyframe_id, scene.KeyFrameAt(14)->Id());
+  EXPECT_EQ(rejection.timestamp, scene.KeyFrameAt(14)->Timestamp());
+  EXPECT_GE(rejection.candidates_tried, 1);
+  // It got past the bag-of-words and RANSAC checks; only the match count stopped it.
+  EXPECT_GE(rejection.best_bow_matches, options.min_bow_matches);
+  EXPECT_GE(rejection.best_ransac_inliers, options.min_inliers);
+  EXPECT_GT(rejection.best_total_matches, 0);
+  EXPECT_LT(rejection.best_total_matches, options.min_total_matches);
+  EXPECT_EQ(counts.paused.load(), 0);
+}
+
 TEST(LoopCloserTest, ThreadedFindsTheSameLoop) {
   test::LoopScene scene;
   HookCounts counts;

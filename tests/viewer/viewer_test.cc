@@ -142,6 +142,48 @@ TEST_F(RunFolderTest, GroundTruthIsFoundBesideTheDatasetThatStatsNames) {
   EXPECT_EQ(data["ate"]["file"], (dir_ / "sequence" / "groundtruth.txt").string());
 }
 
+TEST_F(RunFolderTest, FrameLogEventsComeWithTheRunAndItsAbsenceIsNoted) {
+  EXPECT_EQ(LoadRunData(dir_.string(), RunDataOptions()).count("events"), 0u);
+  {
+    std::ofstream log(dir_ / "frames.tsv");
+    log << "frame\ttimestamp\twall_s\ttracked\tkeyframe\tmovers_share\n"
+        << "0\t0.0\t5.0\t1\t1\t0.25\n"
+        << "3\t0.1\t5.1\t0\t0\t0.5\n";
+  }
+  const nlohmann::json data = LoadRunData(dir_.string(), RunDataOptions());
+  const nlohmann::json& events = data["events"];
+  EXPECT_EQ(events["frame"], nlohmann::json::array({0, 3}));
+  EXPECT_EQ(events["tracked"], nlohmann::json::array({1, 0}));
+  EXPECT_EQ(events["keyframe"], nlohmann::json::array({1, 0}));
+  EXPECT_DOUBLE_EQ(events["movers_share"][1].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(events["timestamp"][1].get<double>(), 0.1);
+  // Only the columns the page draws travel; those the log lacks are absent.
+  EXPECT_EQ(events.count("wall_s"), 0u);
+  EXPECT_EQ(events.count("removed"), 0u);
+  for (const auto& note : data["notes"]) {
+    EXPECT_EQ(note.get<std::string>().find("frames.tsv"), std::string::npos) << note;
+  }
+}
+
+TEST_F(RunFolderTest, ABrokenFrameLogIsAnErrorNamingTheFileAndLine) {
+  const std::string path = (dir_ / "frames.tsv").string();
+  const auto expect_error = [&](const std::string& text, const std::string& expected) {
+    std::ofstream(path) << text;
+    try {
+      LoadRunData(dir_.string(), RunDataOptions());
+      ADD_FAILURE() << "no error for: " << text;
+    } catch (const Error& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(path), std::string::npos) << message;
+      EXPECT_NE(message.find(expected), std::string::npos) << message;
+    }
+  };
+  expect_error("frame\ttimestamp\n0\t0.0\n", "no 'tracked' column");
+  expect_error("frame\ttimestamp\ttracked\n0\t0.0\t1\n1\t0.1\n", "line 3: 2 fields");
+  expect_error("frame\ttimestamp\ttracked\n0\tnoon\t1\n", "line 2: 'noon' is not a number");
+  expect_error("", "empty");
+}
+
 TEST_F(RunFolderTest, MissingOutputsAreNamed) {
   fs::remove(dir_ / "stats.json");
   EXPECT_EQ(MissingRunFiles(dir_.string()), std::vector<std::string>{"stats.json"});
@@ -167,8 +209,9 @@ TEST_F(RunFolderTest, OptionalOutputsMayBeAbsent) {
   EXPECT_EQ(data["keyframes"].size(), 0u);
   EXPECT_FALSE(data.contains("dense"));
   EXPECT_FALSE(data.contains("ground_truth"));
-  ASSERT_EQ(data["notes"].size(), 1u);
+  ASSERT_EQ(data["notes"].size(), 2u);
   EXPECT_NE(data["notes"][0].get<std::string>().find("sparse_map.ply"), std::string::npos);
+  EXPECT_NE(data["notes"][1].get<std::string>().find("frames.tsv"), std::string::npos);
 }
 
 TEST_F(RunFolderTest, CliNamesTheMissingFilesAndExits2) {

@@ -41,6 +41,7 @@ export function normalizeRun(json) {
     sparse: decodeCloud(json.sparse),
     dense: decodeCloud(json.dense),
     loops: json.loops ?? [],
+    events: json.events ?? null,
     notes: json.notes ?? [],
   };
 }

@@ -6,6 +6,7 @@
 // What it drew is counted in window.drvslamViewer, which the tests read back.
 import { decodeCloud, normalizeRun, poseNearest } from './data.js';
 import { showFigures, runFigures, showStages, showLoops, showNotes } from './panels.js';
+import { errorPlotEvents } from './events.js';
 import { plotErrors, plotTrajectory } from './plots.js';
 import { groupStages } from './stages.js';
 import { createMapView } from './view3d.js';
@@ -21,6 +22,8 @@ const viewer = {
   denseTotal: 0,
   loops: 0,
   errorSamples: 0,
+  eventFrames: 0,       // frames of the frame log drawn beside the error (0 without one)
+  keyframeTicks: 0,
   updates: 0,
   frameUpdates: 0,
   images: 0,
@@ -49,10 +52,18 @@ function denseNote(shown, total) {
                        : `dense map: ${total} points`;
 }
 
-function drawPlots(trajectory, groundTruth, errors, ate) {
+// marks: the events beside the error (errorPlotEvents), or null for none.
+function drawPlots(trajectory, groundTruth, errors, ate, marks = null) {
   $('plots').hidden = false;
   plotTrajectory($('plot-trajectory'), trajectory, groundTruth);
-  plotErrors($('plot-errors'), errors, ate ? ate.rmse : null);
+  plotErrors($('plot-errors'), errors, ate ? ate.rmse : null, marks);
+}
+
+// The finished run's events on the error plot's time axis (null without ground truth).
+function runEventMarks(run) {
+  if (!run.errors || run.errors.length === 0) return null;
+  const loop = run.stats?.loop;
+  return errorPlotEvents(run.events, loop?.loops, loop?.rejections, run.errors[0][0]);
 }
 
 // A finished run (view or report): everything at once. The text panels and the 2-D plots come
@@ -66,7 +77,8 @@ function drawRun(scene, run) {
   const notes = [...run.notes];
   if (run.dense.total > 0) notes.push(denseNote(run.dense.count, run.dense.total));
   showNotes($('notes'), notes);
-  drawPlots(run.trajectory, run.groundTruth, run.errors, run.ate);
+  const marks = runEventMarks(run);
+  drawPlots(run.trajectory, run.groundTruth, run.errors, run.ate, marks);
 
   scene.fit(run.trajectory, run.sparse.positions);
   scene.setSparse(run.sparse.positions);
@@ -85,6 +97,8 @@ function drawRun(scene, run) {
     denseTotal: run.dense.total,
     loops: run.loops.length,
     errorSamples: run.errors ? run.errors.length : 0,
+    eventFrames: run.events?.frame ? run.events.frame.length : 0,
+    keyframeTicks: marks ? marks.keyframes.length : 0,
     finished: true,
   });
 }

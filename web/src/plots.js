@@ -1,5 +1,6 @@
 // 2-D plots on a canvas, no library: the trajectory seen from above with ground truth, and the
-// position error over time.
+// position error over time with the frames' events beside it (src/events.js).
+import { eventLegend, kTickLanes } from './events.js';
 
 const kMargin = { left: 48, right: 12, top: 22, bottom: 30 };
 
@@ -89,8 +90,72 @@ export function plotTrajectory(canvas, trajectory, groundTruth) {
   polyline(g, trajectory.map((p) => [sx(p[1]), sz(p[3])]), '#1f6fd1', false);
 }
 
-// errors: [[timestamp, metres], ...] over the associated poses.
-export function plotErrors(canvas, errors, rmse) {
+// Shares (0..1, on the plot's full height) behind the error: the image share people cover as a
+// filled area, the share of features removed as a thin line.
+function drawShares(g, marks, st, width, height) {
+  const bottom = height - kMargin.bottom;
+  const ss = scale(0, 1, bottom, kMargin.top);
+  if (marks.moversShare.length > 1) {
+    g.fillStyle = 'rgba(156, 195, 230, 0.55)';
+    g.beginPath();
+    g.moveTo(st(marks.moversShare[0][0]), bottom);
+    for (const [t, share] of marks.moversShare) g.lineTo(st(t), ss(share));
+    g.lineTo(st(marks.moversShare[marks.moversShare.length - 1][0]), bottom);
+    g.closePath();
+    g.fill();
+  }
+  g.save();
+  g.lineWidth = 0.8;
+  polyline(g, marks.removedShare.map(([t, share]) => [st(t), ss(share)]), '#555', false);
+  g.restore();
+  if (marks.moversShare.length > 0 || marks.removedShare.length > 0) {
+    g.fillStyle = '#444';
+    g.font = '11px sans-serif';
+    const label = 'share 0-1';
+    g.fillText(label, width - kMargin.right - g.measureText(label).width, kMargin.top - 4);
+  }
+}
+
+// One lane of ticks per kind of event, stacked up from the time axis.
+function drawTicks(g, marks, st, height) {
+  const bottom = height - kMargin.bottom;
+  let lane = 0;
+  for (const { id, color } of kTickLanes) {
+    if (marks[id].length === 0) continue;
+    const y = bottom - 2 - 6 * lane;
+    g.strokeStyle = color;
+    g.lineWidth = 1;
+    g.beginPath();
+    for (const t of marks[id]) {
+      g.moveTo(st(t), y);
+      g.lineTo(st(t), y - 5);
+    }
+    g.stroke();
+    ++lane;
+  }
+}
+
+function drawLegend(g, marks, width) {
+  let x = kMargin.left + 4;
+  let y = kMargin.top + 11;
+  g.font = '10px sans-serif';
+  for (const { label, color } of eventLegend(marks)) {
+    const w = g.measureText(label).width + 16;
+    if (x + w > width - kMargin.right) {
+      x = kMargin.left + 4;
+      y += 12;
+    }
+    g.fillStyle = color;
+    g.fillRect(x, y - 7, 8, 8);
+    g.fillStyle = '#333';
+    g.fillText(label, x + 10, y);
+    x += w + 6;
+  }
+}
+
+// errors: [[timestamp, metres], ...] over the associated poses; marks (optional): what
+// errorPlotEvents made of the run's frame log, in seconds since the first error sample.
+export function plotErrors(canvas, errors, rmse, marks) {
   const title = rmse == null ? 'position error over time (cm)'
                              : `position error over time (cm); ATE RMSE ${(100 * rmse).toFixed(2)} cm`;
   const { g, width, height } = prepare(canvas, title);
@@ -104,5 +169,10 @@ export function plotErrors(canvas, errors, rmse) {
   const st = scale(tRange[0], tRange[1], kMargin.left, width - kMargin.right);
   const se = scale(eRange[0], eRange[1], height - kMargin.bottom, kMargin.top);
   axes(g, width, height, 'time (s)', 'error (cm)', tRange, eRange);
+  if (marks) {
+    drawShares(g, marks, st, width, height);
+    drawTicks(g, marks, st, height);
+  }
   polyline(g, errors.map((e) => [st(e[0] - t0), se(100 * e[1])]), '#c0392b', false);
+  if (marks) drawLegend(g, marks, width);
 }

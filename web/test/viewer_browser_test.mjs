@@ -169,6 +169,11 @@ async function checkFinishedRun(page, errors, runDir, screenshot, budget) {
   }
   check(v.groundTruthPoses > 0 && v.errorSamples === poses,
         `ground truth drawn (${v.groundTruthPoses} poses), error over time for every pose (${v.errorSamples})`);
+  // The frame log the setup wrote (one line per tracked frame) is drawn beside the error, with a
+  // tick for every keyframe it made.
+  const logLines = readFileSync(path.join(runDir, 'frames.tsv'), 'utf8').trim().split('\n').length - 1;
+  check(logLines > 0 && v.eventFrames === logLines, `frame log events drawn ${v.eventFrames} = frames.tsv ${logLines}`);
+  check(v.keyframeTicks > 0, `keyframe ticks drawn (${v.keyframeTicks})`);
   const mapVariance = await mapCanvasVariance(page);
   check(mapVariance > 5, `3-D view not blank (grey-level variance ${mapVariance.toFixed(1)})`);
   const variance = await screenshotVariance(page, screenshot);

@@ -113,6 +113,9 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
     async.sequential = config_.sequential;
     async.drop_when_busy = config_.realtime;
     async_ = std::make_unique<AsyncSegmenter>(config_.segmenter, async);
+    if (config_.realtime && config_.segmentation.backoff_passes > 0.0) {
+      pacer_ = std::make_unique<SegmentationPacer>(config_.segmentation.backoff_passes);
+    }
     carry_objects_ =
         config_.realtime && config_.segmentation.propagation == MaskPropagation::kObjects;
     // Object carrying bypasses MaskPropagator (MaskSource only hands the masks out then).
@@ -173,7 +176,9 @@ void DynamicFrontEnd::Record(const char* stage, double ms) {
 int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr, bool keyframe_likely) {
   if (begun_) throw Error("DynamicFrontEnd: BeginFrame called twice without Filter");
   begun_ = true;
-  if (async_) async_->Submit(next_index_, timestamp, bgr);
+  if (async_ && (!pacer_ || pacer_->ShouldSubmit(timestamp, async_->TypicalPassMs()))) {
+    async_->Submit(next_index_, timestamp, bgr);
+  }
   // The Mat header by value: the job may still run after the caller's argument is gone (a
   // frame that fails before Filter; the destructor then finishes it).
   if (flow_helper_)

@@ -63,6 +63,7 @@
 #include "drvslam/semantic/mask_source.h"
 #include "drvslam/semantic/object_mask_carrier.h"
 #include "drvslam/semantic/segmentation_options.h"
+#include "drvslam/semantic/segmentation_pacer.h"
 #include "drvslam/semantic/segmenter.h"
 
 namespace drvslam {
@@ -153,6 +154,7 @@ struct DynamicStats {
   bool realtime = false;
   std::optional<AsyncSegmenterStats> segmentation;
   std::optional<SegmentationLatencyStats> latency;
+  std::optional<SegmentationPacerStats> pacing;  // --realtime with Segmentation.backoffPasses
 };
 
 class DynamicFrontEnd {
@@ -294,6 +296,7 @@ class DynamicFrontEnd {
   std::unique_ptr<ClassTable> classes_;
   std::unique_ptr<AsyncSegmenter> async_;
   std::unique_ptr<MaskSource> masks_;
+  std::unique_ptr<SegmentationPacer> pacer_;  // --realtime: the network backs off first
   bool carry_objects_ = false;
   ObjectMaskCarrier carrier_;
   // Objects propagation: each recent frame's flow tracks from the frame before it (newest

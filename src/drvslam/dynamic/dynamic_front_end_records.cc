@@ -124,6 +124,7 @@ DynamicStats DynamicFrontEnd::Stats() const {
                               : 0.0;
   if (async_) stats.segmentation = async_->Stats();
   if (masks_) stats.latency = masks_->Latency();
+  if (pacer_) stats.pacing = pacer_->Stats();
   return stats;
 }
 

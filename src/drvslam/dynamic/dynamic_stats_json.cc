@@ -49,8 +49,13 @@ nlohmann::json DynamicStatsJson(const DynamicStats& s) {
 
 nlohmann::json DynamicSegmentationJson(const DynamicStats& stats) {
   if (!stats.segmentation) return nullptr;
-  return SegmentationStatsJson(stats.segmenter, *stats.segmentation,
-                               stats.latency ? &*stats.latency : nullptr);
+  nlohmann::json json = SegmentationStatsJson(stats.segmenter, *stats.segmentation,
+                                              stats.latency ? &*stats.latency : nullptr);
+  if (stats.pacing) {
+    json["backoff"] = {{"backoffs", stats.pacing->backoffs},
+                       {"frames_held", stats.pacing->frames_held}};
+  }
+  return json;
 }
 
 }  // namespace drvslam

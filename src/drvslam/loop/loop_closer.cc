@@ -138,7 +138,17 @@ void LoopCloser::Process(const std::shared_ptr<KeyFrame>& keyframe) {
     stats_.detection_ms += detection_ms;
     if (!detection.consistent.empty()) {
       ++stats_.detections;
-      if (!match) ++stats_.rejected;
+      if (!match) {
+        ++stats_.rejected;
+        LoopRejection rejection;
+        rejection.keyframe_id = keyframe->Id();
+        rejection.timestamp = keyframe->Timestamp();
+        rejection.candidates_tried = verification.candidates_tried;
+        rejection.best_bow_matches = verification.best_bow_matches;
+        rejection.best_ransac_inliers = verification.best_ransac_inliers;
+        rejection.best_total_matches = verification.best_total_matches;
+        stats_.rejections.push_back(rejection);
+      }
     }
   }
   if (!detection.consistent.empty() && !match) {

@@ -38,6 +38,18 @@ struct LoopEvent {
   double correction_deg = 0.0;
 };
 
+// A keyframe whose consistent loop candidates all failed geometric verification, with how far
+// the best of them got: which check stopped it says whether the place was wrong or the
+// matching too weak (people in front of the scene, blur).
+struct LoopRejection {
+  long keyframe_id = -1;
+  double timestamp = 0.0;
+  int candidates_tried = 0;
+  int best_bow_matches = 0;
+  int best_ransac_inliers = 0;
+  int best_total_matches = 0;
+};
+
 struct LoopClosingStats {
   long keyframes_processed = 0;
   long detections = 0;   // keyframes with a consistent candidate
@@ -49,6 +61,7 @@ struct LoopClosingStats {
   double correction_ms = 0.0;
   double global_ba_ms = 0.0;
   std::vector<LoopEvent> loops;
+  std::vector<LoopRejection> rejections;  // one per rejected detection, in order
 };
 
 class LoopCloser {

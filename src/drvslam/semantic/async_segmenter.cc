@@ -182,6 +182,11 @@ std::shared_ptr<const SegmentedFrame> AsyncSegmenter::WaitFor(std::size_t frame_
   return slot->second.result;
 }
 
+std::optional<double> AsyncSegmenter::TypicalPassMs() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return typical_segment_ms_;
+}
+
 std::optional<double> AsyncSegmenter::ExpectedWaitMs(std::size_t frame_index) const {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto slot = slots_.find(frame_index);

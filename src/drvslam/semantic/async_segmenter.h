@@ -79,6 +79,10 @@ class AsyncSegmenter {
   // The finished frame with the highest index, or nullptr; never blocks.
   std::shared_ptr<const SegmentedFrame> Latest() const;
 
+  // The network's recent forward-pass time (an exponential average); nullopt before the first
+  // pass finishes. Never blocks for longer than reading it.
+  std::optional<double> TypicalPassMs() const;
+
   AsyncSegmenterStats Stats() const;
   const Segmenter& Backend() const { return *segmenter_; }
 

@@ -52,6 +52,10 @@ struct SegmentationOptions {
   // makes the next camera frame replace the one after it: with 50 ms a 30 Hz run skipped 6-19
   // frames of 300, with 15 ms 5-8 (3 runs each). 0 = keyframes never wait.
   double keyframe_wait_ms = 15.0;
+  // Segmentation.backoffPasses (--realtime only): when frames are skipped because tracking fell
+  // behind, the network takes no new frame for this many of its own pass times
+  // (semantic/segmentation_pacer.h); 0 = it never backs off.
+  double backoff_passes = 1.0;
 
   std::string masks_dir = "masks";  // mask-file backend; relative paths are under the dataset
   MaskNaming mask_naming = MaskNaming::kAuto;

@@ -414,6 +414,15 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
                        {"correction_m", event.correction_m},
                        {"correction_deg", event.correction_deg}});
     }
+    nlohmann::json rejections = nlohmann::json::array();
+    for (const LoopRejection& r : l.rejections) {
+      rejections.push_back({{"keyframe", r.keyframe_id},
+                            {"timestamp", r.timestamp},
+                            {"candidates_tried", r.candidates_tried},
+                            {"best_bow_matches", r.best_bow_matches},
+                            {"best_ransac_inliers", r.best_ransac_inliers},
+                            {"best_total_matches", r.best_total_matches}});
+    }
     json["loop"] = {{"keyframes_processed", l.keyframes_processed},
                     {"detections", l.detections},
                     {"rejected", l.rejected},
@@ -423,7 +432,8 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
                     {"detection_ms", l.detection_ms},
                     {"correction_ms", l.correction_ms},
                     {"global_ba_ms", l.global_ba_ms},
-                    {"loops", loops}};
+                    {"loops", loops},
+                    {"rejections", rejections}};
   }
   const auto path_or_null = [](const std::string& path) {
     return path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path);

@@ -6,6 +6,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/dense/point_cloud_io.h"
 #include "drvslam/io/trajectory_io.h"
+#include "drvslam/tools/viewer/frame_events.h"
 #include "drvslam/tools/viewer/viewer_json.h"
 
 namespace drvslam {
@@ -83,6 +84,14 @@ nlohmann::json LoadRunData(const std::string& run_dir, const RunDataOptions& opt
   data["loops"] = stats.contains("loop") && stats["loop"].contains("loops")
                       ? stats["loop"]["loops"]
                       : nlohmann::json::array();
+  const fs::path frame_log = dir / kFrameLogFile;
+  if (fs::is_regular_file(frame_log)) {
+    data["events"] = ReadFrameEvents(frame_log.string());
+  } else {
+    notes.push_back(std::string("no ") + kFrameLogFile +
+                    " in this run: the error plot shows no events (drvslam benchmark writes it; "
+                    "drvslam run writes it with --frame-log)");
+  }
   const std::string truth_path = GroundTruthPath(options, stats);
   if (!truth_path.empty() && !trajectory.empty()) {
     std::string why;

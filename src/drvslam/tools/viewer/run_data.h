@@ -1,6 +1,6 @@
 // A finished run's outputs as the viewer page draws them (drvslam view, drvslam report): the
-// trajectories, stats.json, the sparse and dense maps, loop closures, and the ground truth with
-// the error over time when the run's sequence has one.
+// trajectories, stats.json, the sparse and dense maps, loop closures, the ground truth with the
+// error over time when the run's sequence has one, and the frame log's events beside it.
 #pragma once
 
 #include <cstddef>
@@ -13,7 +13,7 @@ namespace drvslam {
 // The outputs of `drvslam run` a run folder must hold, and those drawn when present.
 inline constexpr const char* kRequiredRunFiles[] = {"CameraTrajectory.txt", "stats.json"};
 inline constexpr const char* kOptionalRunFiles[] = {"KeyFrameTrajectory.txt", "sparse_map.ply",
-                                                    "dense_map.ply", "eval.json"};
+                                                    "dense_map.ply", "eval.json", "frames.tsv"};
 
 struct RunDataOptions {
   // Dense points sent to the browser at most; a larger map is decimated evenly and the page

@@ -26,6 +26,7 @@ std::string ContentType(const std::string& name) {
   const std::string extension = fs::path(name).extension().string();
   if (extension == ".json") return "application/json";
   if (extension == ".txt") return "text/plain; charset=utf-8";
+  if (extension == ".tsv") return "text/tab-separated-values; charset=utf-8";
   return "application/octet-stream";
 }
 
