@@ -16,6 +16,7 @@ bool ValidDepth(float z) { return z > 0.0f && std::isfinite(z); }
 // Lower median of the valid depths under the mask inside `roi`; NaN when too few.
 float MedianMaskDepth(const cv::Mat& mask, const cv::Mat& depth, const cv::Rect& roi) {
   std::vector<float> values;
+  values.reserve(static_cast<std::size_t>(roi.area()));
   for (int y = roi.y; y < roi.y + roi.height; ++y) {
     const uint8_t* m = mask.ptr<uint8_t>(y);
     const float* d = depth.ptr<float>(y);
@@ -54,12 +55,22 @@ int CompleteMaskWithDepth(Instance& instance, const cv::Mat& depth,
     return ValidDepth(z) && std::abs(z - median) <= band;
   };
 
-  // Breadth-first over the ROI from every mask pixel that is itself in the band.
+  // Breadth-first over the ROI from the mask's edge: the pixels in the band with a neighbour
+  // outside the mask. An interior pixel's neighbours are all in the mask already, so starting
+  // from every mask pixel reaches the same pixels (what is reached does not depend on the order)
+  // and only costs a pass over the whole body.
   cv::Mat& mask = instance.mask;
   std::vector<cv::Point> frontier;
+  const auto outside_mask = [&](int x, int y) {
+    return roi.contains(cv::Point(x, y)) && mask.at<uint8_t>(y, x) == 0;
+  };
   for (int y = roi.y; y < roi.y + roi.height; ++y) {
+    const uint8_t* m = mask.ptr<uint8_t>(y);
     for (int x = roi.x; x < roi.x + roi.width; ++x) {
-      if (mask.at<uint8_t>(y, x) != 0 && eligible(x, y)) frontier.emplace_back(x, y);
+      if (m[x] == 0) continue;
+      const bool on_edge = outside_mask(x - 1, y) || outside_mask(x + 1, y) ||
+                           outside_mask(x, y - 1) || outside_mask(x, y + 1);
+      if (on_edge && eligible(x, y)) frontier.emplace_back(x, y);
     }
   }
   static constexpr int kDx[4] = {1, -1, 0, 0};
