@@ -43,18 +43,39 @@ TEST(SegmentationPacer, AfterASkipTheNetworkRestsOneOfItsPasses) {
   EXPECT_EQ(pacer.Stats().frames_held, 3u);
 }
 
-TEST(SegmentationPacer, TheRestScalesWithBackoffPassesAndASkipDuringItExtendsIt) {
+TEST(SegmentationPacer, TheRestScalesWithBackoffPasses) {
   SegmentationPacer twice(2.0);
   // 180 ms after frame 11: frames 11-15 held, 16 (200 ms after) submitted.
   EXPECT_EQ(Feed(twice, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14, 15, 16}, 90.0),
             (std::vector<bool>{true, true, true, true, true, true, true, true, true, true, false,
                                false, false, false, false, true}));
-  SegmentationPacer once(1.0);
-  // A second skip (frame 13) while resting: the rest runs 100 ms from frame 14.
-  EXPECT_EQ(Feed(once, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 14, 15, 16, 17}, 100.0),
+}
+
+TEST(SegmentationPacer, NoNewRestDuringARestOrThePassAfterIt) {
+  SegmentationPacer pacer(1.0);
+  // Frame 13 is skipped too, inside the pass after the rest that frame 11 started (the rest
+  // ends at 0.54 s, the free pass at 0.64 s): frame 14 (0.56 s) goes to the network.
+  EXPECT_EQ(Feed(pacer, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 14, 15, 16, 17}, 100.0),
             (std::vector<bool>{true, true, true, true, true, true, true, true, true, true, false,
-                               false, false, false, false, true}));
-  EXPECT_EQ(once.Stats().backoffs, 2u);
+                               false, true, true, true, true}));
+  EXPECT_EQ(pacer.Stats().backoffs, 1u);
+  EXPECT_EQ(pacer.Stats().frames_held, 2u);
+}
+
+TEST(SegmentationPacer, TrackingThatKeepsSkippingStillLeavesTheNetworkFrames) {
+  SegmentationPacer pacer(1.0);
+  // Two of every four frames skipped for 12 s, with 100 ms passes: rests and free passes
+  // alternate, and about half of the frames that arrive go to the network.
+  int submitted = 0;
+  int arrived = 0;
+  for (int i = 0; i < 300; ++i) {
+    if (i % 4 >= 2) continue;
+    ++arrived;
+    if (pacer.ShouldSubmit(i * kPeriod, 100.0)) ++submitted;
+  }
+  EXPECT_EQ(arrived, 150);
+  EXPECT_EQ(submitted, 78);
+  EXPECT_EQ(pacer.Stats().backoffs, 36u);
 }
 
 TEST(SegmentationPacer, NothingIsHeldBeforeThePassTimeOrThePeriodIsKnown) {

@@ -36,16 +36,18 @@ bool SegmentationPacer::ShouldSubmit(double timestamp, std::optional<double> pas
     recent_gaps_.push_back(*gap);
     if (recent_gaps_.size() > kGapWindow) recent_gaps_.pop_front();
   }
-  if (gap && period && pass_ms && *gap > kSkipGapPeriods * *period) {
+  const bool resting = rest_until_ && timestamp < *rest_until_;
+  const bool skipped = gap && period && pass_ms && *gap > kSkipGapPeriods * *period;
+  if (skipped && !resting && (!rest_until_ || timestamp >= no_rest_before_)) {
     ++stats_.backoffs;
-    hold_until_ = std::max(hold_until_, timestamp + backoff_passes_ * *pass_ms / 1000.0);
-    holding_ = true;
+    const double pass_s = *pass_ms / 1000.0;
+    rest_until_ = timestamp + backoff_passes_ * pass_s;
+    no_rest_before_ = *rest_until_ + pass_s;
   }
-  if (holding_ && timestamp < hold_until_) {
+  if (rest_until_ && timestamp < *rest_until_) {
     ++stats_.frames_held;
     return false;
   }
-  holding_ = false;
   return true;
 }
 

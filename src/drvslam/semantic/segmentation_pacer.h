@@ -2,9 +2,11 @@
 // with few cores the network and tracking compete for them; when tracking falls behind the
 // camera, frames are skipped: lost to tracking for good, where late masks are still carried to
 // the frame. A frame that follows the previous one by more than 1.5 camera periods shows that
-// frames were skipped in between; the network then takes no new frame for `backoff_passes`
-// times its own recent pass time, so while tracking skips frames the network idles at least
-// that share of the time and leaves the core to tracking. With no skips it runs at full rate.
+// frames were skipped in between; the network then rests: it takes no new frame for
+// `backoff_passes` times its own recent pass time, leaving the core to tracking. After a rest it
+// runs freely for at least one pass before it can rest again, so however long tracking keeps
+// skipping, the network still gets frames part of the time and masks keep coming. With no skips
+// it runs at full rate.
 //
 // The period is the lower quartile of the recent gaps between frames: right while fewer than
 // about 40 % of the frames are skipped (a quarter of the gaps are then still single periods) and
@@ -19,8 +21,8 @@
 namespace drvslam {
 
 struct SegmentationPacerStats {
-  std::size_t backoffs = 0;     // frames that showed a skip and started or extended a back-off
-  std::size_t frames_held = 0;  // frames not handed to the network during a back-off
+  std::size_t backoffs = 0;     // rests started (each by a frame that showed a skip)
+  std::size_t frames_held = 0;  // frames not handed to the network during a rest
 };
 
 class SegmentationPacer {
@@ -41,8 +43,10 @@ class SegmentationPacer {
   double backoff_passes_;
   std::optional<double> last_timestamp_;
   std::deque<double> recent_gaps_;
-  double hold_until_ = 0.0;
-  bool holding_ = false;
+  // The current rest ends at rest_until_; the next may start at no_rest_before_ (one free pass
+  // after it). Both in the frames' clock.
+  std::optional<double> rest_until_;
+  double no_rest_before_ = 0.0;
   SegmentationPacerStats stats_;
 };
 
