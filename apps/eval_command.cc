@@ -7,13 +7,13 @@
 #include <string>
 
 #include "command_registry.h"
-#include "drvslam/eval/ate.h"
-#include "drvslam/eval/eval_report.h"
-#include "drvslam/eval/rpe.h"
-#include "drvslam/eval/trajectory_plot.h"
 #include "drvslam/io/trajectory_formats.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/io/tum_dataset.h"
+#include "drvslam/tools/eval/ate.h"
+#include "drvslam/tools/eval/eval_report.h"
+#include "drvslam/tools/eval/rpe.h"
+#include "drvslam/tools/eval/trajectory_plot.h"
 
 namespace {
 

@@ -15,8 +15,8 @@
 
 #include "command_registry.h"
 #include "drvslam/core/error.h"
-#include "drvslam/synth/scenario.h"
-#include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/synth/scenario.h"
+#include "drvslam/tools/synth/synth_generator.h"
 #include "progress_bar.h"
 
 namespace drvslam::cli {

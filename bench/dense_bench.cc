@@ -9,7 +9,7 @@
 #include "drvslam/dense/dense_mapper.h"
 #include "drvslam/dense/open3d_voxel.h"
 #include "drvslam/dense/voxel_grid.h"
-#include "drvslam/synth/synth_sequence.h"
+#include "drvslam/tools/synth/synth_sequence.h"
 #include "drvslam/tools/truth/synthetic_dense_frame.h"
 
 namespace drvslam {

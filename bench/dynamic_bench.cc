@@ -21,7 +21,7 @@
 #include "drvslam/dynamic/removal_policy.h"
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/semantic/class_table.h"
-#include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/tracking/frame_factory.h"
 

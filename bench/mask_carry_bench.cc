@@ -22,7 +22,7 @@
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/semantic/mask_propagator.h"
 #include "drvslam/semantic/object_mask_carrier.h"
-#include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/tools/truth/mask_carry_eval.h"
 

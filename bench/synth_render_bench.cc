@@ -9,8 +9,8 @@
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 
-#include "drvslam/synth/sequence_writer.h"
-#include "drvslam/synth/synth_sequence.h"
+#include "drvslam/tools/synth/sequence_writer.h"
+#include "drvslam/tools/synth/synth_sequence.h"
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <memory>
 #include <vector>
 
-#include "drvslam/synth/synth_sequence.h"
 #include "drvslam/system.h"
 #include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
+#include "drvslam/tools/synth/synth_sequence.h"
 #include "drvslam/tracking/tracker_options.h"
 
 namespace drvslam {

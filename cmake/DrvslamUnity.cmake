@@ -8,17 +8,17 @@
 # files; add one of them here).
 set(DRVSLAM_NO_UNITY_FILES
   src/drvslam/loop/vocabulary_io.cc            # kDescriptorBytes (bow_vocabulary.cc)
-  src/drvslam/synth/camera_path.cc             # kTwoPi (actors.cc)
-  src/drvslam/synth/sensor_model.cc            # InRange, Require (real_camera_options.cc), kBands
-  src/drvslam/synth/synth_sequence.cc          # CocoName (synth_options.cc)
+  src/drvslam/tools/synth/camera_path.cc       # kTwoPi (actors.cc)
+  src/drvslam/tools/synth/sensor_model.cc      # InRange, Require (real_camera_options.cc), kBands
+  src/drvslam/tools/synth/synth_sequence.cc    # CocoName (synth_options.cc)
   tests/dense/dense_evidence_test.cc           # kPersonClass (dense_mapper_test.cc)
   tests/feature/orb_invariance_test.cc         # Extract, Features (orb_extractor_test.cc)
   tests/feature/steered_brief_test.cc          # Noise (gaussian_smoothing_test.cc)
   tests/integration/reset_when_lost_test.cc    # kFrames (frame_faults_test.cc)
-  tests/io/realtime_feeder_test.cc             # Stamp (tum_dataset_test.cc)
   tests/loop/vocabulary_io_test.cc             # TrainedVocabulary (bow_transform_test.cc)
   tests/optim/se3_manifold_test.cc             # Ambient, PlusJacobian (pose_costs_test.cc)
-  tests/synth/real_camera_test.cc)             # Centroid (scene_test.cc), SmallOptions
+  tests/tools/synth/lens_distortion_test.cc    # Centroid (scene_test.cc), SmallOptions
+  tests/tools/synth/real_camera_test.cc)       # SmallOptions (synth_sequence_test.cc)
 function(drvslam_unity_exceptions)
   # Each file's folder is where its target is made, so that is the scope of its property. A
   # source with compile definitions of its own is left out of the unity batches (CMake's

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "drvslam/dense/dense_mapper.h"
-#include "drvslam/synth/synth_sequence.h"
+#include "drvslam/tools/synth/synth_sequence.h"
 #include "drvslam/tools/truth/dense_truth.h"
 #include "drvslam/tools/truth/synthetic_dense_frame.h"
 

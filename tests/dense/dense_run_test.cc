@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "drvslam/core/error.h"
-#include "drvslam/synth/synth_generator.h"
 #include "drvslam/tools/runner/sequence_runner.h"
+#include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/truth/dense_evaluation.h"
 #include "test_support/temp_folder.h"
 

@@ -14,7 +14,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/semantic/object_mask_carrier.h"
-#include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/tools/truth/mask_carry_eval.h"
 #include "test_support/temp_folder.h"

@@ -7,12 +7,12 @@
 #include <string>
 
 #include "drvslam/core/settings.h"
-#include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/mapping/map_consistency.h"
 #include "drvslam/system.h"
 #include "drvslam/system_options.h"
+#include "drvslam/tools/eval/ate.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "synthesized_sequence.h"

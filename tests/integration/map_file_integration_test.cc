@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "drvslam/eval/ate.h"
 #include "drvslam/io/text_lines.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/mapfile/map_file.h"
+#include "drvslam/tools/eval/ate.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 

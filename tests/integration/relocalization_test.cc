@@ -18,9 +18,9 @@
 
 #include "drvslam/core/settings.h"
 #include "drvslam/core/settings_file.h"
-#include "drvslam/eval/ate.h"
 #include "drvslam/io/text_lines.h"
 #include "drvslam/io/trajectory_io.h"
+#include "drvslam/tools/eval/ate.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 

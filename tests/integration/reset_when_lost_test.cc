@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "drvslam/eval/ate.h"
 #include "drvslam/io/trajectory_io.h"
+#include "drvslam/tools/eval/ate.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "synthesized_sequence.h"
 

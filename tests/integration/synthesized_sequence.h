@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "drvslam/eval/ate.h"
+#include "drvslam/tools/eval/ate.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 
 namespace drvslam::test {

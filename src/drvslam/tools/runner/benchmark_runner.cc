@@ -13,10 +13,10 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/core/settings_file.h"
-#include "drvslam/eval/ate.h"
-#include "drvslam/eval/eval_report.h"
-#include "drvslam/eval/rpe.h"
 #include "drvslam/settings_registry.h"
+#include "drvslam/tools/eval/ate.h"
+#include "drvslam/tools/eval/eval_report.h"
+#include "drvslam/tools/eval/rpe.h"
 #include "drvslam/tools/runner/benchmark_report.h"
 #include "drvslam/tools/runner/dynamic_run_setup.h"
 #include "drvslam/tools/viewer/headless_browser.h"

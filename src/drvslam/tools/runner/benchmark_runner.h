@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "drvslam/eval/error_statistics.h"
+#include "drvslam/tools/eval/error_statistics.h"
 #include "drvslam/tools/runner/benchmark_list.h"
 
 namespace drvslam {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "drvslam/semantic/segmenter.h"
-#include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/synth/synth_generator.h"
 
 namespace drvslam {
 

@@ -6,14 +6,14 @@
 #include <memory>
 
 #include "drvslam/core/error.h"
-#include "drvslam/eval/ate.h"
-#include "drvslam/eval/eval_report.h"
-#include "drvslam/eval/rpe.h"
-#include "drvslam/eval/trajectory_plot.h"
 #include "drvslam/semantic/yolo_segmenter.h"
-#include "drvslam/synth/synth_generator.h"
+#include "drvslam/tools/eval/ate.h"
+#include "drvslam/tools/eval/eval_report.h"
+#include "drvslam/tools/eval/rpe.h"
+#include "drvslam/tools/eval/trajectory_plot.h"
 #include "drvslam/tools/runner/cutout_sequence.h"
 #include "drvslam/tools/runner/sequence_runner.h"
+#include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/viewer/run_report.h"
 
 namespace drvslam {

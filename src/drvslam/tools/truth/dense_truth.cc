@@ -8,8 +8,8 @@
 #include "drvslam/core/error.h"
 #include "drvslam/core/option_check.h"
 #include "drvslam/dense/voxel_grid.h"
-#include "drvslam/eval/alignment.h"
-#include "drvslam/eval/closest_index.h"
+#include "drvslam/tools/eval/alignment.h"
+#include "drvslam/tools/eval/closest_index.h"
 
 namespace drvslam {
 namespace {

@@ -13,9 +13,9 @@
 #include "drvslam/core/settings_file.h"
 #include "drvslam/dense/dense_point.h"
 #include "drvslam/io/trajectory_io.h"
-#include "drvslam/synth/scene.h"
-#include "drvslam/synth/synth_options.h"
-#include "drvslam/synth/synth_sequence.h"
+#include "drvslam/tools/synth/scene.h"
+#include "drvslam/tools/synth/synth_options.h"
+#include "drvslam/tools/synth/synth_sequence.h"
 
 namespace drvslam {
 

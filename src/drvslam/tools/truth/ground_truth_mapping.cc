@@ -6,9 +6,9 @@
 #include "drvslam/core/error.h"
 #include "drvslam/core/settings.h"
 #include "drvslam/core/settings_file.h"
-#include "drvslam/eval/closest_index.h"
 #include "drvslam/io/tum_dataset.h"
 #include "drvslam/semantic/class_table.h"
+#include "drvslam/tools/eval/closest_index.h"
 #include "drvslam/tools/truth/ground_truth_segmenter.h"
 
 namespace drvslam {

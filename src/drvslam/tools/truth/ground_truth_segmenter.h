@@ -10,7 +10,7 @@
 
 #include "drvslam/semantic/label_masks.h"
 #include "drvslam/semantic/segmenter.h"
-#include "drvslam/synth/instances_file.h"
+#include "drvslam/tools/synth/instances_file.h"
 
 namespace drvslam {
 

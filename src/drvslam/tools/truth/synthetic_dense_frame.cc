@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "drvslam/synth/scene_builder.h"
+#include "drvslam/tools/synth/scene_builder.h"
 
 namespace drvslam {
 

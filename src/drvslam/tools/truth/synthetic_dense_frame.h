@@ -4,7 +4,7 @@
 #pragma once
 
 #include "drvslam/dense/dense_frame.h"
-#include "drvslam/synth/synth_sequence.h"
+#include "drvslam/tools/synth/synth_sequence.h"
 
 namespace drvslam {
 

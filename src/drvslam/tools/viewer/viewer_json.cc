@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "drvslam/core/error.h"
-#include "drvslam/eval/ate.h"
+#include "drvslam/tools/eval/ate.h"
 
 namespace drvslam {
 
