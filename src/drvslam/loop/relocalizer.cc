@@ -30,6 +30,7 @@ constexpr double kRansacConfidence = 0.99;
 // PnP poses tried per candidate: the best, then one from the matches it left out (a shifted
 // copy of the place in repeated structure).
 constexpr int kPosesPerCandidate = 2;
+constexpr double kMinRivalShare = 0.5;
 
 }  // namespace
 
@@ -115,6 +116,7 @@ void Relocalizer::TryCandidate(Frame& frame, const std::shared_ptr<KeyFrame>& ca
   // Matches an earlier PnP of this candidate took as inliers: in repeated structure the rest may
   // hold a second, shifted pose.
   std::vector<bool> used(matches.size(), false);
+  int first_inliers = 0;
   for (int round = 0; round < kPosesPerCandidate; ++round) {
     std::vector<cv::Point3d> object_points;
     std::vector<cv::Point2d> image_points;
@@ -128,6 +130,9 @@ void Relocalizer::TryCandidate(Frame& frame, const std::shared_ptr<KeyFrame>& ca
       slots.push_back(j);
     }
     if (static_cast<int>(slots.size()) < options_.min_pnp_inliers) return;
+    // A second pose from fewer matches than half the first's inliers could not rival it (the
+    // choice asks for 80 %); RANSAC among outliers runs all its iterations, so it is skipped.
+    if (round > 0 && static_cast<int>(slots.size()) < kMinRivalShare * first_inliers) return;
     cv::Mat rvec, tvec;
     std::vector<int> inliers;
     // Keypoints are undistorted already: no distortion coefficients.
@@ -136,6 +141,7 @@ void Relocalizer::TryCandidate(Frame& frame, const std::shared_ptr<KeyFrame>& ca
                                            static_cast<float>(options_.ransac_reprojection_error),
                                            kRansacConfidence, inliers, cv::SOLVEPNP_EPNP);
     if (!solved || static_cast<int>(inliers.size()) < options_.min_pnp_inliers) return;
+    if (round == 0) first_inliers = static_cast<int>(inliers.size());
     std::vector<std::size_t> inlier_slots;
     for (const int k : inliers) {
       inlier_slots.push_back(slots[static_cast<std::size_t>(k)]);
