@@ -1,8 +1,9 @@
 // Relocalizer: finds a lost camera again in the existing map (ORB-SLAM2's relocalization),
 // implementing tracking's PlaceRecognition interface. The frame's bag of words queries the
 // keyframe database; each candidate keyframe is matched by bag of words, poses are found by PnP
-// RANSAC (EPnP) on those matches (a second one on the matches the first left out), refined by
-// pose-only optimization and extended by a guided projection search of the candidate's points.
+// RANSAC (EPnP) on those matches (a second one on the matches the first left out, when enough
+// are left to rival it), refined by pose-only optimization and extended by a guided projection
+// search of the candidate's points.
 // Unlike ORB-SLAM2, which takes the first candidate with enough inliers, every candidate is
 // tried and the poses are compared (place_hypotheses.h): when two distinct places explain the
 // frame almost equally well (repeated structure), neither is taken. Also computes the bags of
