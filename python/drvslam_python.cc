@@ -100,6 +100,7 @@ struct PyTrackResult {
   double timestamp = 0.0;
   long frame_id = -1;
   TrackingState state = TrackingState::kNotInitialized;
+  LocalizationQuality quality = LocalizationQuality::kLost;
   bool pose_valid = false;
   Eigen::Matrix4d T_cw = Eigen::Matrix4d::Identity();
   Eigen::Matrix4d T_wc = Eigen::Matrix4d::Identity();
@@ -183,6 +184,7 @@ class PySystem {
     out.timestamp = result.timestamp;
     out.frame_id = result.frame_id;
     out.state = result.state;
+    out.quality = result.quality;
     out.pose_valid = result.pose_valid;
     out.T_cw = result.T_cw.Matrix();
     out.T_wc = result.T_wc.Matrix();
@@ -297,11 +299,21 @@ PYBIND11_MODULE(drvslam, m) {
       .value("OK", TrackingState::kOk)
       .value("LOST", TrackingState::kLost);
 
+  py::enum_<LocalizationQuality>(
+      m, "LocalizationQuality",
+      "How far a pose may be trusted: VERIFIED (act on it), TENTATIVE (just found again after "
+      "a loss, not confirmed: may be wrong by a repeat of the scene), LOST (no pose).")
+      .value("LOST", LocalizationQuality::kLost)
+      .value("TENTATIVE", LocalizationQuality::kTentative)
+      .value("VERIFIED", LocalizationQuality::kVerified);
+
   py::class_<PyTrackResult>(m, "TrackResult", "What track_rgbd says about one frame.")
       .def_readonly("timestamp", &PyTrackResult::timestamp, "seconds, as given")
       .def_readonly("frame_id", &PyTrackResult::frame_id,
                     "accepted frames are numbered from 0 in call order")
       .def_readonly("state", &PyTrackResult::state, "TrackingState after this frame")
+      .def_readonly("quality", &PyTrackResult::quality,
+                    "LocalizationQuality: act on the pose only when VERIFIED")
       .def_readonly("pose_valid", &PyTrackResult::pose_valid,
                     "True when the frame was tracked (T_cw, T_wc hold its pose); else both are "
                     "the identity")
@@ -313,6 +325,7 @@ PYBIND11_MODULE(drvslam, m) {
       .def("__repr__", [](const PyTrackResult& r) {
         return "TrackResult(frame_id=" + std::to_string(r.frame_id) +
                ", state=" + TrackingStateName(r.state) +
+               ", quality=" + LocalizationQualityName(r.quality) +
                ", pose_valid=" + (r.pose_valid ? "True" : "False") +
                ", inliers=" + std::to_string(r.inliers) + ")";
       });

@@ -41,6 +41,7 @@ def test_track_rgbd_returns_pose_and_state(sequence):
         assert result.frame_id == k
         assert result.state == drvslam.TrackingState.OK, result
         assert result.pose_valid and result.inliers > 50
+        assert result.quality == drvslam.LocalizationQuality.VERIFIED, result
         assert result.T_wc.shape == (4, 4) and result.T_wc.dtype == np.float64
         np.testing.assert_allclose(result.T_cw @ result.T_wc, np.eye(4), atol=1e-9)
         # Against the ground truth moved into the map's frame (frame 0 at the origin).
@@ -204,10 +205,16 @@ def test_saved_map_is_loaded_and_localized_in(sequence, tmp_path):
     assert path.stat().st_size > 1000
 
     localizer = make_system(sequence, load_map=str(path), localization=True)
-    first = localizer.track_rgbd(*load(frames[-1]))
-    assert first.state == drvslam.TrackingState.OK and first.pose_valid
+    # Found again: tentative until it has tracked three frames in a row against the map.
+    results = [localizer.track_rgbd(*load(frame)) for frame in frames[-3:]]
+    assert [r.state for r in results] == [drvslam.TrackingState.OK] * 3
+    assert [r.quality for r in results] == [
+        drvslam.LocalizationQuality.TENTATIVE,
+        drvslam.LocalizationQuality.TENTATIVE,
+        drvslam.LocalizationQuality.VERIFIED,
+    ]
     # Relocalized in the saved map's frame: the pose the mapper had for that frame.
     _, mapped = mapper.trajectory()
-    np.testing.assert_allclose(first.T_wc[:3, 3], mapped[-1][:3, 3], atol=0.01)
+    np.testing.assert_allclose(results[-1].T_wc[:3, 3], mapped[-1][:3, 3], atol=0.01)
     with pytest.raises(drvslam.Error, match="map"):
         make_system(sequence, load_map=str(tmp_path / "missing.bin"))

@@ -132,6 +132,7 @@ struct System::Impl {
   std::size_t map_loaded_points = 0;
   std::size_t map_loaded_dense_points = 0;
   double map_load_ms = 0.0;
+  long first_verified_frame = -1;
 };
 
 namespace {
@@ -301,7 +302,7 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
     // Local mapping writes bundle-adjusted poses under this lock, so a frame is tracked
     // against one consistent state of the map.
     std::lock_guard<std::mutex> lock(map.UpdateMutex());
-    result = tracker.Track(std::move(frame));
+    result = tracker.Track(std::move(frame), depth);
     // Map points matched on still potentially-moving objects are filed, to be culled when the
     // object starts moving.
     if (dynamic && result.state == TrackingState::kOk && tracker.LastFrame()) {
@@ -330,6 +331,10 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   timings.Record("total", total_ms_frame);
   total_ms += total_ms_frame;
   track.state = result.state;
+  track.quality = result.quality;
+  if (track.quality == LocalizationQuality::kVerified && first_verified_frame < 0) {
+    first_verified_frame = track.frame_id;
+  }
   track.inliers = result.inliers;
   track.new_keyframe = std::move(result.new_keyframe);
   if (observer) Observe(track, bgr, std::move(observed_features), total_ms_frame);
@@ -421,6 +426,12 @@ SystemStats System::Impl::Stats() const {
   stats.frames_discarded = tracker.Recorder().DiscardedCount();
   stats.relocalizations = tracker.Relocalizations();
   stats.relocalization_attempts = relocalizer ? relocalizer->Attempts() : 0;
+  const LocalizationCheck& check = tracker.Verification();
+  stats.relocalizations_verified = check.Verified();
+  stats.relocalizations_ambiguous = relocalizer ? relocalizer->AmbiguousRejections() : 0;
+  stats.relocalizations_depth_rejected = check.DepthRejections();
+  stats.relocalizations_unconfirmed = check.UnconfirmedRejections();
+  stats.first_verified_frame = first_verified_frame;
   stats.vocabulary_load_ms = vocabulary_load_ms;
   stats.map_loaded_from = options.load_map;
   stats.map_loaded_keyframes = map_loaded_keyframes;

@@ -48,6 +48,11 @@ struct TrackResult {
   bool pose_valid = false;
   SE3 T_cw;  // world -> camera
   SE3 T_wc;  // camera -> world: the camera's pose
+  // How far the pose may be trusted (tracking_state.h; docs/maps-and-localization.md): kVerified
+  // poses may be acted on; kTentative ones were just found again after a loss (relocalization)
+  // and are not confirmed yet: in a scene with repeated structure they may be wrong by a whole
+  // repeat; kLost: no pose (pose_valid is false).
+  LocalizationQuality quality = LocalizationQuality::kLost;
   // Map points the pose was estimated from (after initialization: the new map's points).
   int inliers = 0;
   std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe

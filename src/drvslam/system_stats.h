@@ -28,6 +28,14 @@ struct SystemStats {
   std::size_t frames_discarded = 0;
   int relocalizations = 0;  // times tracking was lost and found again
   int relocalization_attempts = 0;
+  // Poses found again that were verified, and those refused or given up, by reason: two places
+  // explained the frame almost equally well (repeated structure); the depth image disagreed with
+  // the map; the frames after it did not track (tracking/localization_check.h).
+  int relocalizations_verified = 0;
+  int relocalizations_ambiguous = 0;
+  int relocalizations_depth_rejected = 0;
+  int relocalizations_unconfirmed = 0;
+  long first_verified_frame = -1;   // id of the first frame with a verified pose (-1: none)
   double vocabulary_load_ms = 0.0;  // 0 when no vocabulary was loaded
   // SystemOptions::load_map: the map file loaded at the start (empty: none), what it held and
   // how long reading and rebuilding it took.

@@ -2,9 +2,10 @@
 // --save-map) is loaded by a run along another path of the same room (--load-map): with
 // --localization it must relocalize within kMaxFramesToRelocalize frames and track within 1 cm
 // of the truth without any alignment of its own (the map's frame is put into the truth's by
-// the mapping run's alignment), adding nothing to the map; without it the map grows. A map made
-// in a room with walking people (ORACLE ground-truth masks) holds no point on them, while the
-// same run without dynamic handling plants points on them (so the check can fail).
+// the mapping run's alignment), adding nothing to the map, and verify the pose two frames later;
+// without it the map grows. A map made in a room with walking people (ORACLE ground-truth masks)
+// holds no point on them, while the same run without dynamic handling plants points on them (so
+// the check can fail).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,6 +22,7 @@
 #include "drvslam/mapfile/map_file.h"
 #include "drvslam/tools/eval/ate.h"
 #include "drvslam/tools/runner/sequence_runner.h"
+#include "drvslam/tracking/localization_check.h"
 #include "synthesized_sequence.h"
 
 namespace drvslam {
@@ -135,6 +137,13 @@ class MapFileIntegrationTest : public ::testing::Test {
     const int first = FirstTrackedFrame(dataset, estimate);
     ASSERT_GE(first, 0) << "never relocalized in the loaded map";
     EXPECT_LE(first, kMaxFramesToRelocalize);
+    // Verified (docs/maps-and-localization.md) once the next frames confirm the pose: at most a
+    // frame later than the confirmation needs.
+    const long verified = summary.stats.first_verified_frame;
+    EXPECT_GE(verified, first + LocalizationCheck::kConfirmFrames - 1);
+    EXPECT_LE(verified, first + LocalizationCheck::kConfirmFrames);
+    EXPECT_EQ(summary.stats.relocalizations_ambiguous, 0);
+    EXPECT_EQ(summary.stats.relocalizations_depth_rejected, 0);
     AteOptions options;
     options.fixed_alignment = alignment;
     options.sequence_frames = kFrames;
@@ -142,9 +151,9 @@ class MapFileIntegrationTest : public ::testing::Test {
     EXPECT_LE(ate.errors.rmse, kMaxAteMetres);
     EXPECT_GE(ate.coverage, 0.9);
     std::printf(
-        "localized: first tracked frame %d, ATE rmse %.4f m (no alignment fitted), "
-        "coverage %.3f\n",
-        first, ate.errors.rmse, ate.coverage);
+        "localized: first tracked frame %d, first verified frame %ld, ATE rmse %.4f m (no "
+        "alignment fitted), coverage %.3f\n",
+        first, verified, ate.errors.rmse, ate.coverage);
   }
 
   fs::path root_;

@@ -8,6 +8,7 @@
 #include "drvslam/core/enum_names.h"
 #include "drvslam/match/bow_matcher.h"
 #include "drvslam/match/pose_observations.h"
+#include "drvslam/tracking/depth_agreement.h"
 #include "drvslam/tracking/keyframe_factory.h"
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/observation_weight.h"
@@ -45,7 +46,7 @@ Tracker::Tracker(Map& map, const TrackerOptions& options, double fps)
   options_.Check();
 }
 
-TrackingResult Tracker::Track(Frame frame) {
+TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
   ApplyPendingReset();
   current_.emplace(std::move(frame));
   TrackingResult result;
@@ -67,6 +68,7 @@ TrackingResult Tracker::Track(Frame frame) {
       recorder_.AddLost(current_->Timestamp());
     }
     result.state = state_;
+    result.quality = check_.Quality(state_ == TrackingState::kOk);
     return result;
   }
 
@@ -90,7 +92,18 @@ TrackingResult Tracker::Track(Frame frame) {
     relocalized = ok;
   }
   if (relocalized && place_recognition_ != nullptr) last_relocalization_frame_id_ = current_->Id();
+  // A pose found again is tentative until the next frames confirm it (localization_check.h).
+  if (relocalized) check_.Start();
+  const bool tentative = check_.Pending();
   if (ok) ok = TrackLocalMap();
+  if (tentative) {
+    if (!ok) {
+      check_.Fail();
+    } else {
+      ok = ConfirmPose(depth);
+    }
+    result.rejection = check_.LastRejection();
+  }
 
   if (!ok) {
     spdlog::debug("frame {} ({:.6f}): tracking lost", current_->Id(), current_->Timestamp());
@@ -104,6 +117,7 @@ TrackingResult Tracker::Track(Frame frame) {
       state_ = TrackingState::kLost;
     }
     result.state = state_;
+    result.quality = LocalizationQuality::kLost;
     return result;
   }
 
@@ -118,7 +132,8 @@ TrackingResult Tracker::Track(Frame frame) {
     velocity_ = current_->Pose() * last_frame_->Pose().Inverse();
   }
   result.inliers = matches_inliers_;
-  if (!localization_only_ && NeedNewKeyFrame()) {
+  // No keyframe is made from a pose that may be a repeat of the scene away.
+  if (!localization_only_ && !check_.Pending() && NeedNewKeyFrame()) {
     last_evidence_.reset();
     last_keyframe_ = CreateKeyFrame(*current_, map_, options_.new_points_per_keyframe);
     AttachBow(*last_keyframe_);
@@ -135,7 +150,25 @@ TrackingResult Tracker::Track(Frame frame) {
   }
   last_frame_ = std::move(current_);
   result.state = state_;
+  result.quality = check_.Quality(true);
   return result;
+}
+
+bool Tracker::ConfirmPose(const cv::Mat& depth) {
+  const DepthAgreement agreement = MeasureDepthAgreement(*current_, depth, local_points_);
+  if (check_.Confirm(agreement)) {
+    if (!check_.Pending()) {
+      spdlog::info("frame {} ({:.6f}): pose found again is verified", current_->Id(),
+                   current_->Timestamp());
+    }
+    return true;
+  }
+  spdlog::info(
+      "frame {} ({:.6f}): pose found again given up: the depth image disagrees with the map "
+      "({} of {} measured map points agree, {} should be visible and are not)",
+      current_->Id(), current_->Timestamp(), agreement.agree, agreement.Measured(),
+      agreement.missing);
+  return false;
 }
 
 bool Tracker::Initialize() {
@@ -201,7 +234,7 @@ void Tracker::AttachBow(KeyFrame& keyframe) {
 }
 
 bool Tracker::TrackLocalMap() {
-  const LocalMap local = BuildLocalMap(*current_);
+  LocalMap local = BuildLocalMap(*current_);
   if (local.reference) reference_keyframe_ = local.reference;
 
   // Points already matched are visible for sure and not searched again.
@@ -226,6 +259,7 @@ bool Tracker::TrackLocalMap() {
     matcher_.SearchByProjection(*current_, local.points, projections, kLocalMapRadius);
   }
   OptimizeCurrentPose();
+  local_points_ = std::move(local.points);
 
   matches_inliers_ = 0;
   for (std::size_t i = 0; i < current_->Size(); ++i) {
@@ -355,6 +389,7 @@ void Tracker::ApplyPendingReset() {
   last_keyframe_.reset();
   last_frame_.reset();
   velocity_.reset();
+  local_points_.clear();
 }
 
 }  // namespace drvslam

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <opencv2/core.hpp>
 #include <optional>
 
 #include "drvslam/map/frame.h"
@@ -15,6 +16,7 @@
 #include "drvslam/optim/pose_optimizer.h"
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/local_map.h"
+#include "drvslam/tracking/localization_check.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "drvslam/tracking/tracking_state.h"
 #include "drvslam/tracking/trajectory_recorder.h"
@@ -23,6 +25,9 @@ namespace drvslam {
 
 struct TrackingResult {
   TrackingState state = TrackingState::kNotInitialized;
+  LocalizationQuality quality = LocalizationQuality::kLost;
+  // Set when a pose found again was given up on this frame (the frame is then lost).
+  LocalizationRejection rejection = LocalizationRejection::kNone;
   int inliers = 0;
   std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe
 };
@@ -36,7 +41,9 @@ class Tracker {
   // against one state of the map, and a correction raised since the last frame (the map's
   // correction epoch) first moves the last frame with its reference keyframe, so the motion
   // model predicts in the corrected map.
-  TrackingResult Track(Frame frame);
+  // `depth`: the frame's CV_32F depth image in metres, the evidence that verifies a pose found
+  // again (localization_check.h); empty: poses found again are confirmed by tracking alone.
+  TrackingResult Track(Frame frame, const cv::Mat& depth = cv::Mat());
 
   // Tracking.resetWhenLost: a lost frame asks for a new map. The reset first lets local mapping
   // finish the keyframe in flight (dropping the queued ones), then clears the map under
@@ -82,6 +89,8 @@ class Tracker {
   // Times tracking was lost and found again: by relocalization, or without place recognition by
   // the retry against the last reference keyframe.
   int Relocalizations() const { return relocalizations_; }
+  // Poses found again and whether they were verified or given up (and why).
+  const LocalizationCheck& Verification() const { return check_; }
 
  private:
   bool Initialize();
@@ -92,6 +101,8 @@ class Tracker {
   // Gives a new keyframe the bag of words of the frame it was made from.
   void AttachBow(KeyFrame& keyframe);
   bool TrackLocalMap();
+  // Inside the tentative window: the tracked frame's depth evidence; false when it fails.
+  bool ConfirmPose(const cv::Mat& depth);
   // Pose-only optimization of current_ from its matches; outlier matches are dropped.
   // Returns the inlier count.
   int OptimizeCurrentPose();
@@ -125,6 +136,8 @@ class Tracker {
   int relocalizations_ = 0;
   long last_relocalization_frame_id_ = -1;
   TrajectoryRecorder recorder_;
+  LocalizationCheck check_;
+  std::vector<std::shared_ptr<MapPoint>> local_points_;  // the last local map's points
   bool reset_pending_ = false;
   long seen_correction_epoch_ = 0;  // the map's correction epoch the last frame is posed in
   SE3 last_frame_T_cr_;             // the last frame relative to its reference keyframe

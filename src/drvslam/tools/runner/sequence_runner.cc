@@ -383,6 +383,12 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["max_arrival_lag_ms"] = summary.max_arrival_lag_ms;
   json["relocalization"] = {{"relocalizations", s.relocalizations},
                             {"attempts", s.relocalization_attempts},
+                            {"verified", s.relocalizations_verified},
+                            {"rejected",
+                             {{"ambiguous", s.relocalizations_ambiguous},
+                              {"depth_disagrees", s.relocalizations_depth_rejected},
+                              {"not_confirmed", s.relocalizations_unconfirmed}}},
+                            {"first_verified_frame", s.first_verified_frame},
                             {"vocabulary_load_ms", s.vocabulary_load_ms}};
   json["fps"] = summary.fps;
   json["wall_s"] = summary.wall_s;
