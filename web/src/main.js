@@ -29,6 +29,7 @@ const viewer = {
   images: 0,
   lastFrameId: -1,
   trackingState: '',
+  localizationQuality: '',  // verified, tentative or lost (live runs)
   finished: false,
   failure: null,
   webgl: null,          // whether the 3-D view has WebGL (null until the page starts)
@@ -155,9 +156,11 @@ class LiveRun {
     viewer.poses = this.trajectory.length;
     viewer.lastFrameId = m.frame_id;
     viewer.trackingState = m.state;
+    viewer.localizationQuality = m.quality ?? '';
     this.scene.fit(this.trajectory, null);
     this.scene.setTrajectory(this.trajectory);
-    $('state').textContent = `tracking: ${m.state}`;
+    // The quality a robot would act on: a tentative pose was just found again, not confirmed.
+    $('state').textContent = m.quality ? `tracking: ${m.state} (${m.quality})` : `tracking: ${m.state}`;
     this.figures = {
       ...this.figures,
       'frame': m.frame_id,

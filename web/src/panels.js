@@ -30,6 +30,15 @@ export function runFigures(run) {
   const features = s.dynamic?.features;
   if (features) figures.push(['features removed', `${features.removed} of ${features.extracted}`]);
   if (s.frames_lost != null) figures.push(['frames lost', s.frames_lost]);
+  const reloc = s.relocalization;
+  if (reloc?.attempts > 0) {
+    // Why poses found again were not trusted (docs/maps-and-localization.md).
+    const r = reloc.rejected ?? {};
+    figures.push(['relocalizations', `${reloc.relocalizations} of ${reloc.attempts} attempts, ` +
+                  `${reloc.verified ?? 0} verified`]);
+    figures.push(['relocalizations refused', `${r.ambiguous ?? 0} ambiguous, ` +
+                  `${r.depth_disagrees ?? 0} depth disagrees, ${r.not_confirmed ?? 0} not confirmed`]);
+  }
   if (run.ate) figures.push(['ATE RMSE', `${(100 * run.ate.rmse).toFixed(2)} cm over ${run.ate.matched} poses`]);
   return figures;
 }

@@ -44,6 +44,7 @@ struct LiveViewer::FrameSnapshot {
   long frame_id = -1;
   double timestamp = 0.0;
   TrackingState state = TrackingState::kNotInitialized;
+  LocalizationQuality quality = LocalizationQuality::kLost;
   int inliers = 0;
   cv::Mat bgr;  // cloned
   // With the dynamic stage: its decisions (masks shared, never written after the frame).
@@ -99,6 +100,7 @@ void LiveViewer::OnFrame(const FrameObservation& o) {
   frame.frame_id = o.track->frame_id;
   frame.timestamp = o.track->timestamp;
   frame.state = o.track->state;
+  frame.quality = o.track->quality;
   frame.inliers = o.track->inliers;
   {
     // A recycled buffer: allocating (and page-faulting) a fresh image per frame on the tracking
@@ -204,6 +206,7 @@ void LiveViewer::PublishFrame(const FrameSnapshot& frame, std::vector<StampedPos
                                   {"frame_id", frame.frame_id},
                                   {"timestamp", frame.timestamp},
                                   {"state", TrackingStateName(frame.state)},
+                                  {"quality", LocalizationQualityName(frame.quality)},
                                   {"poses", batch},
                                   {"fps", static_cast<double>(arrival_s_.size())},
                                   {"frame_ms", frame.frame_ms},
