@@ -183,6 +183,29 @@ TEST(OccupancyGrid, HeightBandDropsLowAndHighObstacles) {
   EXPECT_EQ(CellAt(built->grid, 0.775, 0.775), GridCell::kFree);  // seen through above the box
 }
 
+TEST(OccupancyGrid, DensePointsKeepAnObstacleWhoseVoxelsRaysCleared) {
+  Scene scene = MakeScene();
+  // Grazing rays cleared the box's OctoMap voxels: they are free now, its dense points remain.
+  std::vector<Eigen::Vector3f> cleared;
+  for (const DensePoint& p : scene.rays.cloud) {
+    const Eigen::Vector3d q = WorldFromScene().inverse() * p.position.cast<double>();
+    if (q.z() > 0.01) cleared.push_back(p.position);
+  }
+  scene.samples.occupied.erase(
+      std::remove_if(scene.samples.occupied.begin(), scene.samples.occupied.end(),
+                     [](const Eigen::Vector3f& v) {
+                       const Eigen::Vector3d q = WorldFromScene().inverse() * v.cast<double>();
+                       return InBox(q.x(), q.y()) && q.z() > 0.0;
+                     }),
+      scene.samples.occupied.end());
+  scene.samples.free.insert(scene.samples.free.end(), cleared.begin(), cleared.end());
+  const std::optional<GridExport> built =
+      BuildOccupancyGrid(scene.rays, scene.samples, GridOptions());
+  ASSERT_TRUE(built.has_value());
+  EXPECT_EQ(built->occupied_cells, 160u);  // box 10 x 10 cells and the wall's 60, as before
+  EXPECT_EQ(CellAt(built->grid, 0.775, 0.775), GridCell::kOccupied);
+}
+
 TEST(OccupancyGridIo, WritesMapServerFilesAndReadsThemBack) {
   const Scene scene = MakeScene();
   const std::filesystem::path folder = drvslam::testing::UniqueTempFolder("drvslam_grid");

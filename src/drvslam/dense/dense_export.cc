@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
+#include <utility>
 
 #include "drvslam/core/error.h"
 #include "drvslam/dense/point_cloud_io.h"
@@ -36,7 +37,7 @@ DenseExport ExportDenseMap(DenseMapper& mapper, const std::string& folder,
         "written in {:.0f} ms",
         o.occupied_leaves, o.free_leaves, resolution, o.bytes / (1024.0 * 1024.0), o.build_ms,
         o.write_ms);
-    if (grid.enabled) result.grid = WriteOccupancyGrid(rays, samples, grid, folder);
+    if (grid.enabled) result.grid = WriteOccupancyGrid(rays, std::move(samples), grid, folder);
   } else if (grid.enabled) {
     spdlog::warn("Grid.enabled needs DenseMap.octomapResolution > 0; no map.yaml written");
   }

@@ -3,14 +3,14 @@
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
+#include <utility>
 #include <vector>
 
 #include "drvslam/dense/occupancy_grid_io.h"
 
 namespace drvslam {
 
-std::optional<GridExport> BuildOccupancyGrid(const DenseMapRays& rays,
-                                             const OccupancySamples& samples,
+std::optional<GridExport> BuildOccupancyGrid(const DenseMapRays& rays, OccupancySamples samples,
                                              const GridOptions& options) {
   std::vector<Eigen::Vector3f> points;
   points.reserve(rays.cloud.size());
@@ -24,6 +24,7 @@ std::optional<GridExport> BuildOccupancyGrid(const DenseMapRays& rays,
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3f& o : rays.origins) centre += o.cast<double>();
   centre /= static_cast<double>(rays.origins.size());
+  samples.surface.insert(samples.surface.end(), points.begin(), points.end());
   GridExport result;
   result.floor = *floor;
   result.grid = ProjectToGrid(samples, GridFrameOnFloor(*floor, centre), options);
@@ -34,11 +35,10 @@ std::optional<GridExport> BuildOccupancyGrid(const DenseMapRays& rays,
   return result;
 }
 
-std::optional<GridExport> WriteOccupancyGrid(const DenseMapRays& rays,
-                                             const OccupancySamples& samples,
+std::optional<GridExport> WriteOccupancyGrid(const DenseMapRays& rays, OccupancySamples samples,
                                              const GridOptions& options,
                                              const std::string& folder) {
-  std::optional<GridExport> result = BuildOccupancyGrid(rays, samples, options);
+  std::optional<GridExport> result = BuildOccupancyGrid(rays, std::move(samples), options);
   if (!result || result->grid.cells.empty()) {
     spdlog::warn("map.yaml, map.pgm: no floor found in the dense map; no occupancy grid written");
     return std::nullopt;

@@ -24,13 +24,11 @@ struct GridExport {
 
 // The grid of `samples` on the floor of `rays` (nothing when no floor is found: a warning is
 // logged and no file written). Throws Error naming a file that cannot be written.
-std::optional<GridExport> WriteOccupancyGrid(const DenseMapRays& rays,
-                                             const OccupancySamples& samples,
+std::optional<GridExport> WriteOccupancyGrid(const DenseMapRays& rays, OccupancySamples samples,
                                              const GridOptions& options, const std::string& folder);
 
 // The grid alone, without files: floor search, grid frame and projection.
-std::optional<GridExport> BuildOccupancyGrid(const DenseMapRays& rays,
-                                             const OccupancySamples& samples,
+std::optional<GridExport> BuildOccupancyGrid(const DenseMapRays& rays, OccupancySamples samples,
                                              const GridOptions& options);
 
 }  // namespace drvslam

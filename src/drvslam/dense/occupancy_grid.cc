@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace drvslam {
 namespace {
@@ -87,8 +88,10 @@ OccupancyGrid ProjectToGrid(const OccupancySamples& samples, const Eigen::Matrix
   const Eigen::Matrix3d R = T_world_grid.topLeftCorner<3, 3>();
   T_grid_world.topLeftCorner<3, 3>() = R.transpose();
   T_grid_world.topRightCorner<3, 1>() = -R.transpose() * T_world_grid.topRightCorner<3, 1>();
-  const std::vector<Footprint> occupied =
+  std::vector<Footprint> occupied =
       InBand(samples.occupied, samples.voxel_size, T_grid_world, options);
+  const std::vector<Footprint> surface = InBand(samples.surface, 0.0, T_grid_world, options);
+  occupied.insert(occupied.end(), surface.begin(), surface.end());
   const std::vector<Footprint> free =
       InBand(samples.free, samples.voxel_size, T_grid_world, options);
   if (occupied.empty() && free.empty()) return grid;
@@ -97,7 +100,7 @@ OccupancyGrid ProjectToGrid(const OccupancySamples& samples, const Eigen::Matrix
   double min_y = min_x;
   double max_x = std::numeric_limits<double>::lowest();
   double max_y = max_x;
-  for (const std::vector<Footprint>* set : {&occupied, &free}) {
+  for (const std::vector<Footprint>* set : {&std::as_const(occupied), &free}) {
     for (const Footprint& f : *set) {
       min_x = std::min(min_x, f.x - f.half);
       min_y = std::min(min_y, f.y - f.half);

@@ -1,7 +1,7 @@
 // OccupancyGrid: the people-free map seen from above, for ground robots (ROS map_server / Nav2).
-// Occupied voxels between Grid.minObstacleHeight and Grid.maxObstacleHeight above the floor mark
-// their cells occupied; free voxels in that band (space the cameras saw through) mark theirs
-// free unless occupied; every other cell is unknown.
+// Occupied voxels and dense points between Grid.minObstacleHeight and Grid.maxObstacleHeight
+// above the floor mark their cells occupied; free voxels in that band (space the cameras saw
+// through) mark theirs free unless occupied; every other cell is unknown.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,11 +15,14 @@ namespace drvslam {
 
 enum class GridCell : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
 
-// Voxel centres of an occupancy map (the OctoMap's leaves at its finest level), world frame.
+// Voxel centres of an occupancy map (the OctoMap's leaves at its finest level), world frame,
+// and the dense map's points, which are obstacles too: rays grazing a thin horizontal surface (a
+// table top seen from a few metres) clear its OctoMap voxels, but not its confirmed points.
 struct OccupancySamples {
   double voxel_size = 0.05;  // metres
   std::vector<Eigen::Vector3f> occupied;
   std::vector<Eigen::Vector3f> free;
+  std::vector<Eigen::Vector3f> surface;  // each marks the one cell under it
 };
 
 struct OccupancyGrid {
