@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Scores a run's occupancy grid (map.yaml + map.pgm) against a `drvslam synth` walking room.
 
-The synthetic room's layout (src/drvslam/synth/room_layout.h, scene_builder.cc, actors.cc): floor
+The synthetic room's layout (drvslam synth: room_layout.h, scene_builder.cc, actors.cc): floor
 z = 0, table 1.6 m x 0.9 m centred on the origin, stools at (+-0.45, 0.85), walkers on lanes at
 y = -1.15 (and -1.35 near x = 0), y = 1.35 and x = +-1.25. The grid is brought into the room's
 frame through drvslam_T_world_grid and the first frame's true pose (the run's world frame is its
