@@ -11,6 +11,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/core/settings.h"
 #include "drvslam/dense/dense_options.h"
+#include "drvslam/dense/grid_options.h"
 #include "drvslam/dynamic/dynamic_options.h"
 #include "drvslam/loop/loop_closing_options.h"
 #include "drvslam/loop/relocalization_options.h"
@@ -55,6 +56,7 @@ void CheckFile(const std::string& path, bool strict) {
   LoadSegmentationOptions(file);
   LoadDynamicOptions(file);
   LoadDenseMapOptions(file);
+  LoadGridOptions(file);
   CheckSettingsKeys(file, strict);
   std::printf("%s: settings valid\n", path.c_str());
 }

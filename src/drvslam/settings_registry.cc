@@ -2,6 +2,7 @@
 
 #include "drvslam/core/settings.h"
 #include "drvslam/dense/dense_options.h"
+#include "drvslam/dense/grid_options.h"
 #include "drvslam/dynamic/dynamic_options.h"
 #include "drvslam/loop/loop_closing_options.h"
 #include "drvslam/loop/relocalization_options.h"
@@ -21,6 +22,7 @@ const std::vector<OptionSection>& SettingsSections() {
     all.push_back(SegmentationOptionTable().Describe());
     all.push_back(DynamicOptionTable().Describe());
     all.push_back(DenseMapOptionTable().Describe());
+    all.push_back(GridOptionTable().Describe());
     return all;
   }();
   return sections;

@@ -9,8 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dense/occupancy_grid_io.h"
+#include "drvslam/io/trajectory_io.h"
 #include "drvslam/tools/runner/sequence_runner.h"
 #include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/truth/dense_evaluation.h"
@@ -52,6 +55,44 @@ class DenseRunTest : public ::testing::Test {
 
 fs::path* DenseRunTest::root_ = nullptr;
 
+// The numbers of the list after `key: [` in map.yaml.
+std::vector<double> YamlList(const std::string& yaml, const std::string& key) {
+  const std::size_t start = yaml.find(key + ": [");
+  if (start == std::string::npos) return {};
+  const std::size_t first = start + key.size() + 3;
+  std::string list = yaml.substr(first, yaml.find(']', first) - first);
+  for (char& c : list) c = c == ',' ? ' ' : c;
+  std::istringstream in(list);
+  std::vector<double> numbers;
+  for (double v; in >> v;) numbers.push_back(v);
+  return numbers;
+}
+
+// Counts the grid's cells under room points (x, y) on a 5 cm lattice of the rectangle, by state.
+struct CellCounts {
+  int occupied = 0;
+  int free = 0;
+  int unknown = 0;
+};
+CellCounts CountCells(const OccupancyGrid& grid, const SE3& T_world_room, double x0, double x1,
+                      double y0, double y1) {
+  CellCounts counts;
+  const Eigen::Matrix4d T_grid_world = grid.T_world_grid.inverse();
+  for (double x = x0; x <= x1 + 1e-9; x += 0.05) {
+    for (double y = y0; y <= y1 + 1e-9; y += 0.05) {
+      const Eigen::Vector3d world = T_world_room * Eigen::Vector3d(x, y, 0.0);
+      const Eigen::Vector4d g = T_grid_world * world.homogeneous();
+      int column = 0, row = 0;
+      const GridCell cell =
+          grid.CellOf(g.head<2>(), &column, &row) ? grid.At(column, row) : GridCell::kUnknown;
+      counts.occupied += cell == GridCell::kOccupied;
+      counts.free += cell == GridCell::kFree;
+      counts.unknown += cell == GridCell::kUnknown;
+    }
+  }
+  return counts;
+}
+
 TEST_F(DenseRunTest, WritesTheMapAndItsStatistics) {
   const RunSummary summary = Run("on", "");
   ASSERT_TRUE(summary.stats.dense.has_value());
@@ -84,6 +125,32 @@ TEST_F(DenseRunTest, WritesTheMapAndItsStatistics) {
   EXPECT_EQ(result.scores.points, dense.exported_points);
   EXPECT_LT(result.scores.ghost_share.value_or(1.0), 0.01);
   EXPECT_LT(result.scores.static_mean_distance.value_or(1.0), 0.03);
+
+  // The occupancy grid, in the room's frame through the first true pose (the run's world frame
+  // is the first camera's): the table (1.6 m x 0.9 m on the origin, synth/room_layout.h) is an
+  // obstacle, the walkers' front lane (y = -1.15, actors.cc) between camera and table is not.
+  std::ifstream yaml_in(out / "map.yaml");
+  std::stringstream yaml;
+  yaml << yaml_in.rdbuf();
+  const std::vector<double> origin = YamlList(yaml.str(), "origin");
+  const std::vector<double> pose = YamlList(yaml.str(), "drvslam_T_world_grid");
+  ASSERT_EQ(origin.size(), 3u);
+  ASSERT_EQ(pose.size(), 16u);
+  OccupancyGrid grid = ReadMapServerPgm((out / "map.pgm").string(), 0.05);
+  grid.origin = {origin[0], origin[1]};
+  for (int i = 0; i < 16; ++i) grid.T_world_grid(i / 4, i % 4) = pose[i];
+  const SE3 T_room_world =
+      ReadTumTrajectory((*root_ / "seq" / "groundtruth.txt").string()).front().T_wc;
+  const SE3 T_world_room = T_room_world.Inverse();
+  // The grid lies on the true floor: its up is the room's z, its origin at z = 0.
+  const Eigen::Vector3d grid_up = T_room_world.Rotation() * grid.T_world_grid.block<3, 1>(0, 2);
+  EXPECT_GT(grid_up.z(), std::cos(3.0 * M_PI / 180.0));
+  EXPECT_NEAR((T_room_world * Eigen::Vector3d(grid.T_world_grid.block<3, 1>(0, 3))).z(), 0.0, 0.05);
+  const CellCounts table = CountCells(grid, T_world_room, -0.7, 0.7, -0.35, 0.35);
+  EXPECT_GT(table.occupied, 0.8 * (table.occupied + table.free + table.unknown));
+  const CellCounts lane = CountCells(grid, T_world_room, -0.6, 0.6, -1.25, -1.05);
+  EXPECT_EQ(lane.occupied, 0);
+  EXPECT_GT(lane.free, 0);
 }
 
 TEST_F(DenseRunTest, DenseOffWritesNoMap) {

@@ -384,7 +384,11 @@ DenseMapRays DenseMapper::AssembleRays() {
   rays.origin_of_point.insert(rays.origin_of_point.end(), object_anchors.begin(),
                               object_anchors.end());
   rays.origins.reserve(poses.size());
-  for (const SE3& T_wa : poses) rays.origins.push_back(T_wa.Translation().cast<float>());
+  rays.downs.reserve(poses.size());
+  for (const SE3& T_wa : poses) {
+    rays.origins.push_back(T_wa.Translation().cast<float>());
+    rays.downs.push_back(T_wa.Rotation().col(1).cast<float>());
+  }
   stats_.exported_points = rays.cloud.size();
   return rays;
 }

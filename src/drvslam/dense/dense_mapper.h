@@ -64,6 +64,7 @@ SE3 CurrentKeyFramePose(const KeyFrame& keyframe);
 struct DenseMapRays {
   DenseCloud cloud;
   std::vector<Eigen::Vector3f> origins;  // per anchor
+  std::vector<Eigen::Vector3f> downs;    // per anchor: its camera's image +y axis in the world
   std::vector<int> origin_of_point;      // per point of cloud
 };
 

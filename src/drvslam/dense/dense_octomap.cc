@@ -2,6 +2,8 @@
 
 #include <octomap/OcTree.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -25,10 +27,28 @@ struct KeyLess {
   }
 };
 
+// Every finest-level voxel centre of the leaf at `centre` with edge `size` (pruning merges
+// eight equal children into one leaf).
+void AddLeafVoxels(const octomap::point3d& centre, double size, double resolution,
+                   std::vector<Eigen::Vector3f>* voxels) {
+  const int n = std::max(1, static_cast<int>(std::lround(size / resolution)));
+  const double first = -0.5 * size + 0.5 * resolution;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      for (int k = 0; k < n; ++k) {
+        voxels->emplace_back(static_cast<float>(centre.x() + first + i * resolution),
+                             static_cast<float>(centre.y() + first + j * resolution),
+                             static_cast<float>(centre.z() + first + k * resolution));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution,
-                                     const std::string& bt_path, const std::string& labels_path) {
+                                     const std::string& bt_path, const std::string& labels_path,
+                                     OccupancySamples* samples) {
   DenseOctoMapExport result;
   result.bt_path = bt_path;
   result.labels_path = labels_path;
@@ -55,12 +75,18 @@ DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution
 
   const Stopwatch write;
   for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-    if (tree.isNodeOccupied(*it)) {
+    const bool occupied = tree.isNodeOccupied(*it);
+    if (occupied) {
       ++result.occupied_leaves;
     } else {
       ++result.free_leaves;
     }
+    if (samples != nullptr) {
+      AddLeafVoxels(it.getCoordinate(), it.getSize(), resolution,
+                    occupied ? &samples->occupied : &samples->free);
+    }
   }
+  if (samples != nullptr) samples->voxel_size = resolution;
   if (!tree.writeBinary(bt_path)) throw Error(bt_path + ": cannot write the OctoMap");
   nlohmann::json table;
   table["resolution"] = resolution;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "drvslam/dense/dense_mapper.h"
+#include "drvslam/dense/occupancy_grid.h"
 
 namespace drvslam {
 
@@ -25,9 +26,11 @@ struct DenseOctoMapExport {
   double write_ms = 0.0;  // both files
 };
 
-// Builds the OctoMap at `resolution` (metres) and writes bt_path and labels_path. Throws Error
-// naming the path that cannot be written.
+// Builds the OctoMap at `resolution` (metres) and writes bt_path and labels_path; `samples` (may
+// be null) receives its occupied and free leaves at the finest level, for the 2-D grid. Throws
+// Error naming the path that cannot be written.
 DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution,
-                                     const std::string& bt_path, const std::string& labels_path);
+                                     const std::string& bt_path, const std::string& labels_path,
+                                     OccupancySamples* samples = nullptr);
 
 }  // namespace drvslam

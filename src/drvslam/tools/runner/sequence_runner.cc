@@ -42,6 +42,7 @@ struct ResolvedSettings {
   DynamicOptions dynamic;
   RelocalizationOptions relocalization;
   DenseMapOptions dense;
+  GridOptions grid;
   LoopClosingOptions loop;
   std::string source;
 };
@@ -65,6 +66,7 @@ ResolvedSettings ResolveSettings(const RunOptions& options) {
   resolved.dynamic = LoadDynamicOptions(file);
   resolved.relocalization = LoadRelocalizationOptions(file);
   resolved.dense = LoadDenseMapOptions(file);
+  resolved.grid = LoadGridOptions(file);
   resolved.loop = LoadLoopClosingOptions(file);
   CheckSettingsKeys(file, options.strict_settings);
   resolved.source = path;
@@ -108,7 +110,7 @@ void WriteSparseMap(const Map& map, const std::string& path) {
 // `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
 // `save_map`: where to write the map (empty: nowhere).
 void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
-                  const std::string& save_map, RunSummary* summary) {
+                  const std::string& save_map, const GridOptions& grid, RunSummary* summary) {
   // Local mapping finishes its queue first: the trajectories then include its corrections.
   system.Shutdown();
   summary->wall_s = std::chrono::duration<double>(Clock::now() - started).count();
@@ -121,7 +123,7 @@ void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point sta
     summary->map_bytes = static_cast<std::size_t>(fs::file_size(save_map));
   }
   // Assembled with the final keyframe poses; stats then count the exported points.
-  if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string());
+  if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string(), grid);
   summary->stats = system.Stats();
   summary->fps = summary->wall_s > 0.0 ? summary->stats.frames / summary->wall_s : 0.0;
   summary->camera_trajectory_path =
@@ -139,10 +141,10 @@ void FileRejections(const FrameRejections& rejections, RunSummary* summary) {
 // After a failure: keeps what was tracked so far. A failure while writing must not hide the one
 // that stopped the run, so it is only logged.
 void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::time_point started,
-                              RunSummary* summary) {
+                              const GridOptions& grid, RunSummary* summary) {
   try {
     // A map is saved only from a run that ended well.
-    WriteOutputs(system, out_dir, started, /*save_map=*/"", summary);
+    WriteOutputs(system, out_dir, started, /*save_map=*/"", grid, summary);
   } catch (const std::exception& error) {
     spdlog::error("could not write the outputs after the failure: {}", error.what());
   } catch (...) {
@@ -158,6 +160,7 @@ RunSetup PrepareRun(const RunOptions& options) {
   setup.settings = resolved.settings;
   setup.tracker = resolved.tracker;
   setup.settings_source = resolved.source;
+  setup.grid = resolved.grid;
   SystemOptions& system_options = setup.system;
   system_options.sequential = options.sequential;
   system_options.mapping = resolved.mapping;
@@ -316,7 +319,7 @@ RunSummary RunSequence(const RunOptions& options,
     // Bad input: keep what was tracked so far, then report the failure.
     finish_feeder();
     FileRejections(rejections, &summary);
-    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, setup.grid, &summary);
     throw;
   } catch (const std::exception& error) {
     // Not bad input (cv::Exception, std::bad_alloc, a solver failure): the trajectory is kept
@@ -325,7 +328,7 @@ RunSummary RunSequence(const RunOptions& options,
                   current, total, error.what(), out_dir.string());
     finish_feeder();
     FileRejections(rejections, &summary);
-    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, setup.grid, &summary);
     throw;
   } catch (...) {
     spdlog::error(
@@ -334,12 +337,12 @@ RunSummary RunSequence(const RunOptions& options,
         current, total, out_dir.string());
     finish_feeder();
     FileRejections(rejections, &summary);
-    WriteOutputsAfterFailure(system, out_dir, started, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, setup.grid, &summary);
     throw;
   }
   finish_feeder();
   FileRejections(rejections, &summary);
-  WriteOutputs(system, out_dir, started, options.save_map, &summary);
+  WriteOutputs(system, out_dir, started, options.save_map, setup.grid, &summary);
   // The page gets the final map (after the shutdown drain) and the end of the run.
   if (viewer) viewer->Finish();
   if (rejections.Accepted() == 0 && rejections.Count() > 0 && !summary.interrupted) {

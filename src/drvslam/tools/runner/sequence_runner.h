@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "drvslam/core/settings.h"
+#include "drvslam/dense/grid_options.h"
 #include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/trajectory_formats.h"
 #include "drvslam/system.h"
@@ -69,6 +70,7 @@ struct RunSetup {
   Settings settings;
   TrackerOptions tracker;
   SystemOptions system;
+  GridOptions grid;             // the 2-D occupancy grid written beside the dense map
   DynamicRunSetup dynamic;      // the segmenter and dynamic handling chosen
   std::string settings_source;  // the settings file, or "defaults (TUM fr3)"
 };
