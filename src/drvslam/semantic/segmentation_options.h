@@ -54,9 +54,9 @@ struct SegmentationOptions {
   double keyframe_wait_ms = 15.0;
   // Segmentation.backoffPasses (--realtime only): when frames are skipped because tracking fell
   // behind, the network takes no new frame for this many of its own pass times
-  // (semantic/segmentation_pacer.h); 0 = it never backs off. Off by default: beside other
-  // loads (3 interleaved runs each on the real Bonn dev half) it skipped no fewer frames; on
-  // an idle machine, where the network is tracking's only rival, it is not measured yet.
+  // (semantic/segmentation_pacer.h); 0 = it never backs off. Off by default: on the real Bonn
+  // dev half (realtime, 2 cores, idle and loaded) it skipped about as many frames and its later
+  // masks cost accuracy.
   double backoff_passes = 0.0;
 
   std::string masks_dir = "masks";  // mask-file backend; relative paths are under the dataset
