@@ -13,9 +13,9 @@
 # trained again. Binaries run two at a time. Every report of every process, the CLI runs the
 # tests start included, goes to a log file: any report fails the job (exit status 1) and is
 # printed. Undefined behaviour stops the program (-fno-sanitize-recover). The address job from
-# scratch (no ccache) on a shared 2-core machine, load average 2-6: build 816 s (1,170 CPU-s),
-# tests 305 s (487 CPU-s); the thread job: build 449 s (432 CPU-s), tests 123 s. Both need the
-# release build first (its vocabulary; the thread job also renders test sequences with its CLI).
+# scratch in CI on 2026-11-28 (2 cores, no ccache): build 1,578 s (3,105 CPU-s), tests 542 s
+# (1,038 CPU-s). Both need the release build first (its vocabulary, and its CLI renders the
+# integration tests' sequences).
 # Third-party false positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason.
 # Options given in ASAN_OPTIONS, UBSAN_OPTIONS or TSAN_OPTIONS come last and win (for example
 # ASAN_OPTIONS=detect_leaks=0 to look past a known leak).
@@ -107,10 +107,6 @@ case "$kind" in
       dynamic_test:DynamicFrontEndTest.FlowOnTheHelperThread*:DynamicFrontEndTest.AFrameAbandoned*
     )
     export TSAN_OPTIONS="second_deadlock_stack=1:log_path=REPORTS/tsan:${TSAN_OPTIONS:-}"
-    # The integration tests render their synthetic sequences with `drvslam synth` first: with the
-    # release CLI when there is one, as rendering is not what this job tests and takes minutes
-    # under TSan (a 90-frame sequence: 11 s released, over 4 min here).
-    if [ -x build/bin/drvslam ]; then export DRVSLAM_TEST_SYNTH_CLI="$root/build/bin/drvslam"; fi
     # OpenCV's cv::parallel_for_ (the renderer's) runs on this system's OpenCV on uninstrumented
     # TBB, which orders its workers with atomics TSan does not see: the caller reading what a
     # worker wrote in a finished loop is reported as a race (170 reports per instrumented `synth`
@@ -127,6 +123,12 @@ case "$kind" in
     exit 2
     ;;
 esac
+# The integration tests render their synthetic sequences with `drvslam synth` first: with the
+# release CLI when there is one, as rendering is not what these jobs test (synth_test and
+# synth_cli_test render under ASan) and is slow instrumented: a 90-frame sequence took 11 s
+# released and over 4 min under TSan; local_mapping_integration_test took 49 s under ASan
+# rendering its own, 40 s with the release CLI's.
+if [ -x build/bin/drvslam ]; then export DRVSLAM_TEST_SYNTH_CLI="$root/build/bin/drvslam"; fi
 # Third-party false positives (uninstrumented OpenCV/TBB, libgomp, Ceres), one per line with a
 # comment saying why the report is not ours: scripts/sanitizers/{lsan,tsan}.supp when needed.
 for tool in lsan tsan; do
@@ -191,21 +193,41 @@ echo "sanitizers ($kind): build finished in $(($(date +%s) - started)) s" \
 logs="$build/sanitizer-logs"
 rm -rf "$logs"
 mkdir -p "$logs"
+# True when the only report is LeakSanitizer's own stop-the-world tracer crashing at exit
+# ("Tracer caught signal 11 ... LeakSanitizer has encountered a fatal error"): the leak check did
+# not run, so nothing was found or cleared. A known, intermittent fault of the runtime
+# (google/sanitizers#1353), seen once in CI after synth_test's 63 tests had all passed.
+leak_checker_crashed() {
+  local out="$1" reports="$2"
+  grep -q 'LeakSanitizer has encountered a fatal error' "$out" "$reports"/* 2>/dev/null || return 1
+  ! grep -q -E 'ERROR: (AddressSanitizer|LeakSanitizer): [a-z]|runtime error:' "$out" "$reports"/* 2>/dev/null
+}
 run_one() {
   local index="$1" entry="$2"
   local target="${entry%%:*}" filter="*"
   [[ "$entry" == *:* ]] && filter="${entry#*:}"
   local reports="$logs/$index.reports"
-  mkdir -p "$reports"
-  local begun status=0
+  local begun status attempt note=""
   begun=$(date +%s)
-  ASAN_OPTIONS="${ASAN_OPTIONS//REPORTS/$reports}" UBSAN_OPTIONS="${UBSAN_OPTIONS//REPORTS/$reports}" \
-    TSAN_OPTIONS="${TSAN_OPTIONS//REPORTS/$reports}" \
-    ${run_prefix[@]+"${run_prefix[@]}"} "$build/tests/$target" --gtest_filter="$filter" >"$logs/$index.out" 2>&1 || status=$?
+  # A second run only when the leak checker itself crashed; its verdict is the one given.
+  for attempt in 1 2; do
+    rm -rf "$reports"
+    mkdir -p "$reports"
+    status=0
+    ASAN_OPTIONS="${ASAN_OPTIONS//REPORTS/$reports}" UBSAN_OPTIONS="${UBSAN_OPTIONS//REPORTS/$reports}" \
+      TSAN_OPTIONS="${TSAN_OPTIONS//REPORTS/$reports}" \
+      ${run_prefix[@]+"${run_prefix[@]}"} "$build/tests/$target" --gtest_filter="$filter" >"$logs/$index.out" 2>&1 || status=$?
+    if [ "$attempt" -eq 1 ] && leak_checker_crashed "$logs/$index.out" "$reports"; then
+      note=" (run twice: the leak checker crashed in the first run)"
+      cp "$logs/$index.out" "$logs/$index.first.out"
+      continue
+    fi
+    break
+  done
   local verdict=ok
   if [ "$status" -ne 0 ]; then verdict="FAILED (exit status $status)"; fi
   if [ -n "$(ls -A "$reports")" ]; then verdict="FAILED (sanitizer reports)"; fi
-  echo "sanitizers ($kind): $target --gtest_filter=$filter: $verdict in $(($(date +%s) - begun)) s"
+  echo "sanitizers ($kind): $target --gtest_filter=$filter: $verdict$note in $(($(date +%s) - begun)) s"
   if [ "$verdict" != ok ]; then
     tail -n 40 "$logs/$index.out"
     cat "$reports"/* 2>/dev/null || true
