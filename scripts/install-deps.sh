@@ -12,6 +12,7 @@ packages=(
   libwebsocketpp-dev libasio-dev
   chromium
   pybind11-dev python3-dev python3-numpy python3-pytest
+  cyclonedds-dev cyclonedds-tools
 )
 
 missing=()
