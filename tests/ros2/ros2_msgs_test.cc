@@ -1,9 +1,10 @@
 // The ROS 2 message types against the wire format a ROS 2 node expects: each sample goes through
 // Cyclone DDS's own serializer (a writer and a reader on one participant, the reader's serialized
 // sample read back) and the bytes must equal a CDR layout written out here by hand: XCDR1 little
-// endian, encapsulation header 00 01 00 00, primitives aligned to their size (doubles to 8)
-// counted from the end of that header, strings and sequences with a 4-byte length first. Also
-// the registered DDS type names and ROS 2's rt/ topic names.
+// endian, encapsulation header 00 01 00 0p (p: the padding bytes Cyclone adds to reach a multiple
+// of 4), primitives aligned to their size (doubles to 8) counted from the end of that header,
+// strings and sequences with a 4-byte length first. Also the registered DDS type names and
+// ROS 2's rt/ topic names.
 #include "drvslam/ros2/ros2_msgs.h"
 
 #include <gtest/gtest.h>
