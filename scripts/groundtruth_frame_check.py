@@ -72,7 +72,7 @@ def ate_cm(estimate_xyz, truth_xyz):
     mean_e, mean_t = estimate_xyz.mean(0), truth_xyz.mean(0)
     R = kabsch(truth_xyz - mean_t, estimate_xyz - mean_e)
     aligned = (R @ (estimate_xyz - mean_e).T).T + mean_t
-    return 100 * np.sqrt(((aligned - truth_xyz) ** 2).sum(1).mean()), aligned
+    return 100 * np.sqrt(((aligned - truth_xyz) ** 2).sum(1).mean())
 
 
 def main():
@@ -104,14 +104,15 @@ def main():
     print(f"relative-rotation error, median: {np.median(before):.3f} deg as given, "
           f"{np.median(after):.3f} deg with the fitted body rotation")
 
-    ate_given, _ = ate_cm(estimate[:, 1:4], truth[:, 1:4])
+    ate_given = ate_cm(estimate[:, 1:4], truth[:, 1:4])
     print(f"ATE: {ate_given:.3f} cm against the ground truth as given")
     if args.lever is not None:
         # The camera centre is the body's origin moved by the lever arm, in the body's frame.
         lever = np.array(args.lever)
         centres = truth[:, 1:4] + np.array([R @ lever for R in R_gt])
-        ate_lever, _ = ate_cm(estimate[:, 1:4], centres)
+        ate_lever = ate_cm(estimate[:, 1:4], centres)
         print(f"ATE: {ate_lever:.3f} cm against the camera centres the lever arm gives")
+
 
 if __name__ == "__main__":
     main()
