@@ -103,16 +103,6 @@ class Cdr {
 
 char* Text(const char* text) { return const_cast<char*>(text); }
 
-template <typename Sequence, typename Element>
-Sequence SequenceOf(std::vector<Element>& elements) {
-  Sequence sequence{};
-  sequence._length = static_cast<std::uint32_t>(elements.size());
-  sequence._maximum = sequence._length;
-  sequence._buffer = elements.data();
-  sequence._release = false;
-  return sequence;
-}
-
 std_msgs_msg_dds__Header_ MakeHeader(std::int32_t sec, std::uint32_t nanosec, const char* frame) {
   std_msgs_msg_dds__Header_ header{};
   header.stamp.sec = sec;
@@ -240,7 +230,7 @@ TEST_F(Ros2MsgsTest, Image) {
   image.encoding = Text("rgb8");
   image.is_bigendian = 0;
   image.step = 6;
-  image.data = SequenceOf<dds_sequence_octet>(pixels);
+  image.data = BorrowSequence<dds_sequence_octet>(pixels);
 
   Cdr cdr;
   cdr.Header(1700000000, 123456789, "camera_color_optical_frame");  // 27 bytes: height pads 1
@@ -263,7 +253,7 @@ TEST_F(Ros2MsgsTest, CameraInfo) {
   info.height = 480;
   info.width = 640;
   info.distortion_model = Text("plumb_bob");
-  info.d = SequenceOf<dds_sequence_double>(d);
+  info.d = BorrowSequence<dds_sequence_double>(d);
   const double k[9] = {525.0, 0.0, 319.5, 0.0, 525.0, 239.5, 0.0, 0.0, 1.0};
   const double r[9] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
   const double p[12] = {525.0, 0.0, 319.5, 0.0, 0.0, 525.0, 239.5, 0.0, 0.0, 0.0, 1.0, 0.0};
@@ -308,11 +298,11 @@ TEST_F(Ros2MsgsTest, PointCloud2) {
   cloud.header = MakeHeader(9, 10, "map");
   cloud.height = 1;
   cloud.width = 2;
-  cloud.fields = SequenceOf<dds_sequence_sensor_msgs_msg_dds__PointField_>(fields);
+  cloud.fields = BorrowSequence<dds_sequence_sensor_msgs_msg_dds__PointField_>(fields);
   cloud.is_bigendian = false;
   cloud.point_step = 16;
   cloud.row_step = 32;
-  cloud.data = SequenceOf<dds_sequence_octet>(points);
+  cloud.data = BorrowSequence<dds_sequence_octet>(points);
   cloud.is_dense = true;
 
   Cdr cdr;
@@ -386,7 +376,7 @@ TEST_F(Ros2MsgsTest, TFMessage) {
   transforms[1].transform.rotation = {0.5, -0.5, 0.5, -0.5};
   tf2_msgs_msg_dds__TFMessage_ message{};
   message.transforms =
-      SequenceOf<dds_sequence_geometry_msgs_msg_dds__TransformStamped_>(transforms);
+      BorrowSequence<dds_sequence_geometry_msgs_msg_dds__TransformStamped_>(transforms);
 
   Cdr cdr;
   cdr.U32(2);
@@ -408,7 +398,7 @@ TEST_F(Ros2MsgsTest, OccupancyGrid) {
   grid.info.width = 7;
   grid.info.height = 1;
   grid.info.origin = MakePose(-3.0, -2.0, 0.0);
-  grid.data = SequenceOf<dds_sequence_int8>(cells);
+  grid.data = BorrowSequence<dds_sequence_int8>(cells);
 
   Cdr cdr;
   cdr.Header(17, 18, "map");

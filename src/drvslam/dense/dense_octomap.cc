@@ -44,7 +44,56 @@ void AddLeafVoxels(const octomap::point3d& centre, double size, double resolutio
   }
 }
 
+// Inserts one scan per anchor keyframe, from its camera centre, and fills `labels` (may be
+// null) with the class id of each labelled point's voxel.
+void InsertRays(const DenseMapRays& rays, octomap::OcTree* tree,
+                std::map<octomap::OcTreeKey, int, KeyLess>* labels) {
+  std::vector<octomap::Pointcloud> scans(rays.origins.size());
+  for (std::size_t i = 0; i < rays.cloud.size(); ++i) {
+    const DensePoint& p = rays.cloud[i];
+    scans[static_cast<std::size_t>(rays.origin_of_point[i])].push_back(ToOcto(p.position));
+    if (labels == nullptr || p.label < 0) continue;
+    octomap::OcTreeKey key;
+    if (tree->coordToKeyChecked(ToOcto(p.position), key)) labels->emplace(key, p.label);
+  }
+  for (std::size_t a = 0; a < scans.size(); ++a) {
+    if (scans[a].size() == 0) continue;
+    tree->insertPointCloud(scans[a], ToOcto(rays.origins[a]), /*maxrange=*/-1.0,
+                           /*lazy_eval=*/true, /*discretize=*/true);
+  }
+  tree->updateInnerOccupancy();
+  tree->prune();
+}
+
+// Counts the tree's leaves into `result` and adds their finest-level voxels to `samples` (may
+// be null).
+void CollectLeaves(const octomap::OcTree& tree, double resolution, DenseOctoMapExport* result,
+                   OccupancySamples* samples) {
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    const bool occupied = tree.isNodeOccupied(*it);
+    if (occupied) {
+      ++result->occupied_leaves;
+    } else {
+      ++result->free_leaves;
+    }
+    if (samples != nullptr) {
+      AddLeafVoxels(it.getCoordinate(), it.getSize(), resolution,
+                    occupied ? &samples->occupied : &samples->free);
+    }
+  }
+  if (samples != nullptr) samples->voxel_size = resolution;
+}
+
 }  // namespace
+
+OccupancySamples SampleDenseOctoMap(const DenseMapRays& rays, double resolution) {
+  octomap::OcTree tree(resolution);
+  InsertRays(rays, &tree, nullptr);
+  DenseOctoMapExport counts;
+  OccupancySamples samples;
+  CollectLeaves(tree, resolution, &counts, &samples);
+  return samples;
+}
 
 DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution,
                                      const std::string& bt_path, const std::string& labels_path,
@@ -54,39 +103,12 @@ DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution
   result.labels_path = labels_path;
   const Stopwatch build;
   octomap::OcTree tree(resolution);
-  // One scan per anchor keyframe, from its camera centre.
-  std::vector<octomap::Pointcloud> scans(rays.origins.size());
   std::map<octomap::OcTreeKey, int, KeyLess> labels;
-  for (std::size_t i = 0; i < rays.cloud.size(); ++i) {
-    const DensePoint& p = rays.cloud[i];
-    scans[static_cast<std::size_t>(rays.origin_of_point[i])].push_back(ToOcto(p.position));
-    if (p.label < 0) continue;
-    octomap::OcTreeKey key;
-    if (tree.coordToKeyChecked(ToOcto(p.position), key)) labels.emplace(key, p.label);
-  }
-  for (std::size_t a = 0; a < scans.size(); ++a) {
-    if (scans[a].size() == 0) continue;
-    tree.insertPointCloud(scans[a], ToOcto(rays.origins[a]), /*maxrange=*/-1.0,
-                          /*lazy_eval=*/true, /*discretize=*/true);
-  }
-  tree.updateInnerOccupancy();
-  tree.prune();
+  InsertRays(rays, &tree, &labels);
   result.build_ms = build.ElapsedMs();
 
   const Stopwatch write;
-  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-    const bool occupied = tree.isNodeOccupied(*it);
-    if (occupied) {
-      ++result.occupied_leaves;
-    } else {
-      ++result.free_leaves;
-    }
-    if (samples != nullptr) {
-      AddLeafVoxels(it.getCoordinate(), it.getSize(), resolution,
-                    occupied ? &samples->occupied : &samples->free);
-    }
-  }
-  if (samples != nullptr) samples->voxel_size = resolution;
+  CollectLeaves(tree, resolution, &result, samples);
   if (!tree.writeBinary(bt_path)) throw Error(bt_path + ": cannot write the OctoMap");
   nlohmann::json table;
   table["resolution"] = resolution;

@@ -33,4 +33,8 @@ DenseOctoMapExport WriteDenseOctoMap(const DenseMapRays& rays, double resolution
                                      const std::string& bt_path, const std::string& labels_path,
                                      OccupancySamples* samples = nullptr);
 
+// The same OctoMap's occupied and free voxels alone, without files: for a grid made while
+// mapping runs (the ROS 2 node publishes one periodically).
+OccupancySamples SampleDenseOctoMap(const DenseMapRays& rays, double resolution);
+
 }  // namespace drvslam

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "builtin_interfaces.h"
 #include "geometry_msgs.h"
@@ -22,6 +23,18 @@ namespace drvslam::ros2 {
 // a '~' (needs a node name), a character other than [A-Za-z0-9_/], or a token that starts with
 // a digit.
 std::string DdsTopicName(std::string_view ros_topic);
+
+// A DDS sequence (the generated dds_sequence_* types) over `elements` without copying: the
+// sequence does not own them (_release false), so `elements` must outlive every use of it.
+template <typename Sequence, typename Element>
+Sequence BorrowSequence(std::vector<Element>& elements) {
+  Sequence sequence{};
+  sequence._length = static_cast<std::uint32_t>(elements.size());
+  sequence._maximum = sequence._length;
+  sequence._buffer = elements.data();
+  sequence._release = false;
+  return sequence;
+}
 
 // sensor_msgs/PointField's datatype constants (not in the IDL: idlc reads INT8 as the keyword).
 namespace point_field {

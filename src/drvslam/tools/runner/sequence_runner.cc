@@ -97,14 +97,7 @@ struct ViewerStop {
 
 // The map points' positions as a PLY (x y z; colour and label unused), for the viewer.
 void WriteSparseMap(const Map& map, const std::string& path) {
-  DenseCloud points;
-  for (const std::shared_ptr<MapPoint>& point : map.MapPoints()) {
-    if (point->IsBad()) continue;
-    DensePoint p;
-    p.position = point->Position().cast<float>();
-    points.push_back(p);
-  }
-  WritePlyCloud(path, points);
+  WritePlyCloud(path, SparseMapCloud(map));
 }
 
 // `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
@@ -153,6 +146,17 @@ void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::ti
 }
 
 }  // namespace
+
+DenseCloud SparseMapCloud(const Map& map) {
+  DenseCloud points;
+  for (const std::shared_ptr<MapPoint>& point : map.MapPoints()) {
+    if (point->IsBad()) continue;
+    DensePoint p;
+    p.position = point->Position().cast<float>();
+    points.push_back(p);
+  }
+  return points;
+}
 
 RunSetup PrepareRun(const RunOptions& options) {
   const ResolvedSettings resolved = ResolveSettings(options);

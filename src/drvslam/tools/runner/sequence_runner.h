@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "drvslam/core/settings.h"
+#include "drvslam/dense/dense_point.h"
 #include "drvslam/dense/grid_options.h"
 #include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/trajectory_formats.h"
@@ -24,6 +25,7 @@
 namespace drvslam {
 
 class LiveViewer;  // tools/viewer/live_viewer.h
+class Map;
 
 struct RunOptions {
   std::string dataset;  // TUM-layout folder
@@ -86,6 +88,10 @@ RunSetup PrepareRun(const RunOptions& options);
 // camera trajectory's path. Throws Error when a file cannot be written.
 std::string WriteRunTrajectories(const System& system, const std::string& out_dir,
                                  TrajectoryFormat format);
+
+// The map's good points as a cloud of positions (colour and label unset): sparse_map.ply, and
+// the ROS 2 node's map point cloud.
+DenseCloud SparseMapCloud(const Map& map);
 
 // A frame that cannot be used (missing, empty, corrupt, wrongly sized or typed image, or a list
 // entry whose timestamp repeats or goes back) is skipped with one warning and counted; more than
