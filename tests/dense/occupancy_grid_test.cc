@@ -238,6 +238,41 @@ TEST(OccupancyGridIo, WritesMapServerFilesAndReadsThemBack) {
   EXPECT_NEAR(pose[12], 0.0, 1e-12);
   EXPECT_NEAR(pose[15], 1.0, 1e-12);
   for (int i = 0; i < 16; ++i) EXPECT_NEAR(pose[i], written->grid.T_world_grid(i / 4, i % 4), 1e-6);
+
+  // The YAML and its image back as one grid (what drvslam view draws).
+  const OccupancyGrid whole = ReadMapServerFiles(written->yaml_path);
+  EXPECT_TRUE(whole.cells == written->grid.cells);
+  EXPECT_DOUBLE_EQ(whole.resolution, 0.05);
+  EXPECT_NEAR(whole.origin.x(), written->grid.origin.x(), 1e-9);
+  EXPECT_NEAR(whole.origin.y(), written->grid.origin.y(), 1e-9);
+  EXPECT_TRUE(whole.T_world_grid.isApprox(written->grid.T_world_grid, 1e-8));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(OccupancyGridIo, BadYamlIsAnErrorNamingTheFileAndKey) {
+  const std::filesystem::path folder = drvslam::testing::UniqueTempFolder("drvslam_grid");
+  const std::string path = (folder / "map.yaml").string();
+  const auto message_for = [&](const std::string& yaml) {
+    std::ofstream(path) << yaml;
+    try {
+      ReadMapServerFiles(path);
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  const std::string good_tail =
+      "origin: [0, 0, 0.0]\ndrvslam_T_world_grid: [1, 0, 0, 0, 0, 1, 0, "
+      "0, 0, 0, 1, 0, 0, 0, 0, 1]\n";
+  EXPECT_EQ(message_for("image: map.pgm\n" + good_tail), path + ": no resolution");
+  EXPECT_EQ(message_for("image: map.pgm\nresolution: fine\n" + good_tail),
+            path + ": resolution is not a number: fine");
+  EXPECT_EQ(message_for("image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0.0]\n"
+                        "drvslam_T_world_grid: [1, 0, 0]\n"),
+            path + ": drvslam_T_world_grid needs 16 numbers");
+  EXPECT_NE(
+      message_for("image: none.pgm\nresolution: 0.05\n" + good_tail).find("none.pgm: cannot open"),
+      std::string::npos);
   std::filesystem::remove_all(folder);
 }
 

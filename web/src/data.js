@@ -27,6 +27,13 @@ export function decodeCloud(cloud) {
   };
 }
 
+// The occupancy grid as the server sends it (viewer_json.h: GridJson), its cells decoded; null
+// when the run has none.
+export function decodeGrid(grid) {
+  if (!grid) return null;
+  return { ...grid, cells: decodeBase64Array(grid.cells, Uint8Array) };
+}
+
 // Normalizes a run.json (or an inlined report's data) into what the page draws.
 export function normalizeRun(json) {
   return {
@@ -40,6 +47,7 @@ export function normalizeRun(json) {
     stats: json.stats ?? null,
     sparse: decodeCloud(json.sparse),
     dense: decodeCloud(json.dense),
+    grid: decodeGrid(json.grid),
     loops: json.loops ?? [],
     events: json.events ?? null,
     notes: json.notes ?? [],

@@ -77,6 +77,10 @@ function drawRun(scene, run) {
   showLoops($('loops'), run.loops);
   const notes = [...run.notes];
   if (run.dense.total > 0) notes.push(denseNote(run.dense.count, run.dense.total));
+  if (run.grid) {
+    notes.push(`occupancy grid (map.yaml): ${run.grid.width} x ${run.grid.height} cells of ` +
+               `${run.grid.resolution} m, drawn on the floor under the trajectory`);
+  }
   showNotes($('notes'), notes);
   const marks = runEventMarks(run);
   drawPlots(run.trajectory, run.groundTruth, run.errors, run.ate, marks);
@@ -84,6 +88,7 @@ function drawRun(scene, run) {
   scene.fit(run.trajectory, run.sparse.positions);
   scene.setSparse(run.sparse.positions);
   if (run.dense.count > 0) scene.addDenseChunk(run.dense.positions, run.dense.colors);
+  scene.setGrid(run.grid);
   scene.setTrajectory(run.trajectory);
   scene.setKeyframes(run.keyframes);
   if (run.groundTruth) scene.setGroundTruth(run.groundTruth);
@@ -96,6 +101,8 @@ function drawRun(scene, run) {
     mapPoints: run.sparse.count,
     densePoints: run.dense.count,
     denseTotal: run.dense.total,
+    gridCells: run.grid ? run.grid.width * run.grid.height : 0,
+    gridOccupied: run.grid ? run.grid.cells.filter((cell) => cell === 2).length : 0,
     loops: run.loops.length,
     errorSamples: run.errors ? run.errors.length : 0,
     eventFrames: run.events?.frame ? run.events.frame.length : 0,

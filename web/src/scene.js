@@ -1,5 +1,5 @@
-// The 3-D view: sparse and dense points, the trajectory and ground truth, keyframes as camera
-// frusta, loop closures and the current camera. The map's frame is the camera's (x right, y down,
+// The 3-D view: sparse and dense points, the occupancy grid on its floor, the trajectory and
+// ground truth, keyframes as camera frusta, loop closures and the current camera. The map's frame is the camera's (x right, y down,
 // z forward), so "up" on screen is -y.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -16,6 +16,10 @@ const kColors = {
   loop: 0xe02020,
   current: 0xff8800,
 };
+
+// RGBA of the grid's cells (GridCell: 1 free, 2 occupied); unknown cells stay transparent.
+const kGridFree = [200, 225, 205, 140];
+const kGridOccupied = [70, 70, 70, 230];
 
 // Rotates (x, y, z) by the unit quaternion (qx, qy, qz, qw).
 function rotate(q, x, y, z) {
@@ -133,6 +137,37 @@ export class MapScene {
     }
     this.denseChunks = [];
     this.dirty = true;
+  }
+
+  // The occupancy grid (data.js: decodeGrid) as a textured plane in its floor frame, placed by
+  // T_world_grid; null removes it.
+  setGrid(grid) {
+    if (!grid) {
+      this.replace('grid', null);
+      return;
+    }
+    const { width, height, resolution } = grid;
+    const pixels = new Uint8Array(width * height * 4);
+    for (let i = 0; i < width * height; ++i) {
+      if (grid.cells[i] === 1) pixels.set(kGridFree, 4 * i);
+      if (grid.cells[i] === 2) pixels.set(kGridOccupied, 4 * i);
+    }
+    // Texture row 0 is the plane's lowest y, as the grid's row 0 is.
+    const texture = new THREE.DataTexture(pixels, width, height, THREE.RGBAFormat);
+    texture.magFilter = THREE.NearestFilter;
+    texture.minFilter = THREE.NearestFilter;
+    texture.needsUpdate = true;
+    const sizeX = width * resolution;
+    const sizeY = height * resolution;
+    const geometry = new THREE.PlaneGeometry(sizeX, sizeY);
+    geometry.translate(grid.origin[0] + sizeX / 2, grid.origin[1] + sizeY / 2, 0);
+    const material = new THREE.MeshBasicMaterial({
+      map: texture, transparent: true, side: THREE.DoubleSide, depthWrite: false,
+    });
+    const mesh = new THREE.Mesh(geometry, material);
+    mesh.matrixAutoUpdate = false;
+    mesh.matrix.set(...grid.T_world_grid);  // row-major, as Matrix4.set takes it
+    this.replace('grid', mesh);
   }
 
   setTrajectory(poses) {

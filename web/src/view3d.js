@@ -40,6 +40,7 @@ export class NoScene {
   setKeyframes() {}
   setCurrent() {}
   setLoops() {}
+  setGrid() {}
 }
 
 // Replaces the 3-D canvas with a note of why there is no 3-D view (`reason` from the browser).

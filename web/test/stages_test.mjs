@@ -160,7 +160,7 @@ test('without WebGL the 3-D panel says why and the page gets a scene that draws 
   assert.ok(view.scene instanceof NoScene);
   // Every call the page makes on a scene is there, and does nothing.
   for (const method of ['fit', 'setSparse', 'addDenseChunk', 'clearDense', 'setTrajectory',
-                        'setGroundTruth', 'setKeyframes', 'setCurrent', 'setLoops']) {
+                        'setGroundTruth', 'setKeyframes', 'setCurrent', 'setLoops', 'setGrid']) {
     assert.equal(view.scene[method]([], []), undefined, method);
   }
   const note = canvas.replacedBy;

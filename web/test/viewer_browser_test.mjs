@@ -167,6 +167,13 @@ async function checkFinishedRun(page, errors, runDir, screenshot, budget) {
     check(v.densePoints === budget && note.includes(`showing ${budget} of ${dense} points`),
           `decimated to the budget ${budget} and said so: "${note}"`);
   }
+  // The synthetic room has a floor, so the run wrote map.yaml + map.pgm; the page draws every
+  // cell of the PGM.
+  const pgm = readFileSync(path.join(runDir, 'map.pgm'));
+  const [, pgmWidth, pgmHeight] = pgm.toString('latin1').match(/^P5\s+(?:#[^\n]*\n\s*)*(\d+)\s+(\d+)/);
+  const occupied = [...pgm.subarray(pgm.length - pgmWidth * pgmHeight)].filter((value) => value === 0).length;
+  check(v.gridCells === pgmWidth * pgmHeight && v.gridOccupied === occupied && occupied > 0,
+        `grid drawn: ${v.gridCells} cells (${v.gridOccupied} occupied) = map.pgm ${pgmWidth} x ${pgmHeight} (${occupied} occupied)`);
   check(v.groundTruthPoses > 0 && v.errorSamples === poses,
         `ground truth drawn (${v.groundTruthPoses} poses), error over time for every pose (${v.errorSamples})`);
   // The frame log the setup wrote (one line per tracked frame) is drawn beside the error, with a

@@ -4,6 +4,9 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
+#include <sstream>
+#include <vector>
 
 #include "drvslam/core/error.h"
 
@@ -27,6 +30,36 @@ GridCell CellOfPgm(unsigned char value, const std::string& path) {
   if (value == kPgmUnknown) return GridCell::kUnknown;
   throw Error(path + ": pixel value " + std::to_string(value) +
               " is none of the trinary map's 0, 205, 254");
+}
+
+// The numbers of a YAML flow list "[a, b, c]"; Error naming the file and key otherwise.
+std::vector<double> NumberList(const std::string& text, const std::string& path,
+                               const std::string& key) {
+  const std::size_t open = text.find('[');
+  const std::size_t close = text.rfind(']');
+  if (open != 0 || close != text.size() - 1) {
+    throw Error(path + ": " + key + " is not a [list] of numbers: " + text);
+  }
+  std::string inner = text.substr(1, close - 1);
+  for (char& c : inner) c = c == ',' ? ' ' : c;
+  std::istringstream in(inner);
+  std::vector<double> values;
+  for (double value; in >> value;) values.push_back(value);
+  if (!in.eof()) throw Error(path + ": " + key + " holds something that is not a number: " + text);
+  return values;
+}
+
+double Number(const std::string& text, const std::string& path, const std::string& key) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size())
+    throw Error(path + ": " + key + " is not a number: " + text);
+  return value;
 }
 
 }  // namespace
@@ -94,6 +127,40 @@ OccupancyGrid ReadMapServerPgm(const std::string& pgm_path, double resolution) {
           CellOfPgm(static_cast<unsigned char>(value), pgm_path);
     }
   }
+  return grid;
+}
+
+OccupancyGrid ReadMapServerFiles(const std::string& yaml_path) {
+  std::ifstream in(yaml_path);
+  if (!in) throw Error(yaml_path + ": cannot open");
+  // "key: value" lines (comments and blank lines skipped), as WriteMapServerFiles writes them.
+  std::map<std::string, std::string> values;
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line[start] == '#') continue;
+    const std::size_t colon = line.find(':');
+    if (colon == std::string::npos) throw Error(yaml_path + ": not a 'key: value' line: " + line);
+    std::string value = line.substr(colon + 1);
+    value.erase(0, value.find_first_not_of(" \t"));
+    value.erase(value.find_last_not_of(" \t\r") + 1);
+    values[line.substr(start, colon - start)] = value;
+  }
+  for (const char* key : {"image", "resolution", "origin", "drvslam_T_world_grid"}) {
+    if (values.count(key) == 0) throw Error(yaml_path + ": no " + key);
+  }
+  const double resolution = Number(values["resolution"], yaml_path, "resolution");
+  if (!(resolution > 0.0)) throw Error(yaml_path + ": resolution must be positive");
+  const std::vector<double> origin = NumberList(values["origin"], yaml_path, "origin");
+  const std::vector<double> pose =
+      NumberList(values["drvslam_T_world_grid"], yaml_path, "drvslam_T_world_grid");
+  if (origin.size() != 3) throw Error(yaml_path + ": origin needs 3 numbers (x, y, yaw)");
+  if (origin[2] != 0.0) throw Error(yaml_path + ": origin yaw must be 0 (drvslam writes 0)");
+  if (pose.size() != 16) throw Error(yaml_path + ": drvslam_T_world_grid needs 16 numbers");
+  const std::filesystem::path image =
+      std::filesystem::path(yaml_path).parent_path() / values["image"];
+  OccupancyGrid grid = ReadMapServerPgm(image.string(), resolution);
+  grid.origin = {origin[0], origin[1]};
+  for (int i = 0; i < 16; ++i) grid.T_world_grid(i / 4, i % 4) = pose[i];
   return grid;
 }
 

@@ -27,4 +27,9 @@ void WriteMapServerFiles(const OccupancyGrid& grid, const std::string& yaml_path
 // height from the file. Throws Error naming the file and what is wrong with it.
 OccupancyGrid ReadMapServerPgm(const std::string& pgm_path, double resolution);
 
+// Reads a map.yaml written by WriteMapServerFiles and the PGM its `image` names (relative to the
+// YAML's folder): resolution, origin, drvslam_T_world_grid and the cells. Throws Error naming
+// the file and the key or line at fault.
+OccupancyGrid ReadMapServerFiles(const std::string& yaml_path);
+
 }  // namespace drvslam

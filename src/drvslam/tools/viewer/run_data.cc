@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "drvslam/core/error.h"
+#include "drvslam/dense/occupancy_grid_io.h"
 #include "drvslam/dense/point_cloud_io.h"
 #include "drvslam/io/trajectory_io.h"
 #include "drvslam/tools/viewer/frame_events.h"
@@ -80,6 +81,16 @@ nlohmann::json LoadRunData(const std::string& run_dir, const RunDataOptions& opt
   if (fs::is_regular_file(dense)) {
     const DenseCloud cloud = ReadPlyCloud(dense.string());
     data["dense"] = CloudJson(Decimate(cloud, options.dense_budget), cloud.size(), true);
+  }
+  // The grid is drawn under the trajectory; one that cannot be read is said, not fatal: the rest
+  // of the run is still worth seeing.
+  const fs::path grid = dir / "map.yaml";
+  if (fs::is_regular_file(grid)) {
+    try {
+      data["grid"] = GridJson(ReadMapServerFiles(grid.string()));
+    } catch (const Error& error) {
+      notes.push_back(std::string("occupancy grid not drawn: ") + error.what());
+    }
   }
   data["loops"] = stats.contains("loop") && stats["loop"].contains("loops")
                       ? stats["loop"]["loops"]

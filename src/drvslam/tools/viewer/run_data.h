@@ -1,6 +1,7 @@
 // A finished run's outputs as the viewer page draws them (drvslam view, drvslam report): the
-// trajectories, stats.json, the sparse and dense maps, loop closures, the ground truth with the
-// error over time when the run's sequence has one, and the frame log's events beside it.
+// trajectories, stats.json, the sparse and dense maps, the occupancy grid, loop closures, the
+// ground truth with the error over time when the run's sequence has one, and the frame log's events
+// beside it.
 #pragma once
 
 #include <cstddef>
@@ -12,8 +13,13 @@ namespace drvslam {
 
 // The outputs of `drvslam run` a run folder must hold, and those drawn when present.
 inline constexpr const char* kRequiredRunFiles[] = {"CameraTrajectory.txt", "stats.json"};
-inline constexpr const char* kOptionalRunFiles[] = {"KeyFrameTrajectory.txt", "sparse_map.ply",
-                                                    "dense_map.ply", "eval.json", "frames.tsv"};
+inline constexpr const char* kOptionalRunFiles[] = {"KeyFrameTrajectory.txt",
+                                                    "sparse_map.ply",
+                                                    "dense_map.ply",
+                                                    "map.yaml",
+                                                    "map.pgm",
+                                                    "eval.json",
+                                                    "frames.tsv"};
 
 struct RunDataOptions {
   // Dense points sent to the browser at most; a larger map is decimated evenly and the page

@@ -72,6 +72,17 @@ nlohmann::json CloudJson(const DenseCloud& cloud, std::size_t total, bool with_c
   return json;
 }
 
+nlohmann::json GridJson(const OccupancyGrid& grid) {
+  std::vector<std::uint8_t> cells;
+  cells.reserve(grid.cells.size());
+  for (GridCell cell : grid.cells) cells.push_back(static_cast<std::uint8_t>(cell));
+  nlohmann::json pose = nlohmann::json::array();
+  for (int i = 0; i < 16; ++i) pose.push_back(grid.T_world_grid(i / 4, i % 4));
+  return {{"width", grid.width},           {"height", grid.height},
+          {"resolution", grid.resolution}, {"origin", {grid.origin.x(), grid.origin.y()}},
+          {"T_world_grid", pose},          {"cells", Base64(cells.data(), cells.size())}};
+}
+
 std::optional<TruthOverlay> OverlayTruth(const Trajectory& ground_truth, const Trajectory& estimate,
                                          std::string* why) {
   AteResult ate;
