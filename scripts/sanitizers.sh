@@ -59,6 +59,10 @@ case "$kind" in
       run_stats_test
       # WithoutRelocalization: the relocalizing run with relocalization off.
       relocalization_integration_test:-*WithoutRelocalization*
+      # drvslam ros2 end to end (the node is the sanitized CLI, in a child process) and its
+      # conversions: loaned DDS samples and message buffers borrowed from C++ storage.
+      ros2_node_test
+      ros2_unit_test
       # Unit tests, all of them but two synthetic-camera renders: the handheld preset renders
       # blur and lens distortion too.
       synth_test:-*BlurLowersTheGradientEnergy*:*DistortedSequenceStatesItsCoefficients*
