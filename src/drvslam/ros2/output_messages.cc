@@ -47,21 +47,6 @@ Sequence BorrowOne(Element* element) {
 
 }  // namespace
 
-PoseMessages::PoseMessages(const SE3& T_wc, std::int64_t stamp_ns, const std::string& map_frame,
-                           const std::string& camera_frame)
-    : map_frame_(map_frame), camera_frame_(camera_frame) {
-  odometry_.header = Header(stamp_ns, map_frame_);
-  odometry_.child_frame_id = Text(camera_frame_);
-  odometry_.pose.pose = PoseOf(T_wc);
-  pose_.header = odometry_.header;
-  pose_.pose = odometry_.pose.pose;
-  transform_.header = odometry_.header;
-  transform_.child_frame_id = Text(camera_frame_);
-  transform_.transform = TransformOf(T_wc);
-  transforms_.transforms =
-      BorrowOne<dds_sequence_geometry_msgs_msg_dds__TransformStamped_>(&transform_);
-}
-
 TransformMessage::TransformMessage(const SE3& T_parent_child, std::int64_t stamp_ns,
                                    const std::string& parent, const std::string& child)
     : parent_(parent), child_(child) {
@@ -70,6 +55,18 @@ TransformMessage::TransformMessage(const SE3& T_parent_child, std::int64_t stamp
   transform_.transform = TransformOf(T_parent_child);
   message_.transforms =
       BorrowOne<dds_sequence_geometry_msgs_msg_dds__TransformStamped_>(&transform_);
+}
+
+PoseMessages::PoseMessages(const SE3& T_wc, std::int64_t stamp_ns, const std::string& map_frame,
+                           const std::string& camera_frame)
+    : map_frame_(map_frame),
+      camera_frame_(camera_frame),
+      transform_(T_wc, stamp_ns, map_frame, camera_frame) {
+  odometry_.header = Header(stamp_ns, map_frame_);
+  odometry_.child_frame_id = Text(camera_frame_);
+  odometry_.pose.pose = PoseOf(T_wc);
+  pose_.header = odometry_.header;
+  pose_.pose = odometry_.pose.pose;
 }
 
 PointCloudMessage::PointCloudMessage(const DenseCloud& points, bool with_colour,

@@ -28,27 +28,7 @@ class NonMovable {
   NonMovable& operator=(const NonMovable&) = delete;
 };
 
-// The camera pose T_wc at `stamp_ns` in frame `map_frame` (drvslam's world frame: the first
-// camera's optical frame), child `camera_frame`. Covariances are all zero (ROS's "unknown") and
-// the twist is zero: drvslam estimates neither.
-class PoseMessages : NonMovable {
- public:
-  PoseMessages(const SE3& T_wc, std::int64_t stamp_ns, const std::string& map_frame,
-               const std::string& camera_frame);
-  const nav_msgs_msg_dds__Odometry_& Odometry() const { return odometry_; }
-  const geometry_msgs_msg_dds__PoseStamped_& Pose() const { return pose_; }
-  const tf2_msgs_msg_dds__TFMessage_& Transforms() const { return transforms_; }
-
- private:
-  std::string map_frame_;
-  std::string camera_frame_;
-  nav_msgs_msg_dds__Odometry_ odometry_{};
-  geometry_msgs_msg_dds__PoseStamped_ pose_{};
-  geometry_msgs_msg_dds__TransformStamped_ transform_{};
-  tf2_msgs_msg_dds__TFMessage_ transforms_{};
-};
-
-// One transform `parent` -> `child` (the pose of child in parent) as a TFMessage, for /tf_static.
+// One transform `parent` -> `child` (the pose of child in parent) as a TFMessage.
 class TransformMessage : NonMovable {
  public:
   TransformMessage(const SE3& T_parent_child, std::int64_t stamp_ns, const std::string& parent,
@@ -60,6 +40,25 @@ class TransformMessage : NonMovable {
   std::string child_;
   geometry_msgs_msg_dds__TransformStamped_ transform_{};
   tf2_msgs_msg_dds__TFMessage_ message_{};
+};
+
+// The camera pose T_wc at `stamp_ns` in frame `map_frame` (drvslam's world frame: the first
+// camera's optical frame), child `camera_frame`. Covariances are all zero (ROS's "unknown") and
+// the twist is zero: drvslam estimates neither.
+class PoseMessages : NonMovable {
+ public:
+  PoseMessages(const SE3& T_wc, std::int64_t stamp_ns, const std::string& map_frame,
+               const std::string& camera_frame);
+  const nav_msgs_msg_dds__Odometry_& Odometry() const { return odometry_; }
+  const geometry_msgs_msg_dds__PoseStamped_& Pose() const { return pose_; }
+  const tf2_msgs_msg_dds__TFMessage_& Transforms() const { return transform_.Message(); }
+
+ private:
+  std::string map_frame_;
+  std::string camera_frame_;
+  nav_msgs_msg_dds__Odometry_ odometry_{};
+  geometry_msgs_msg_dds__PoseStamped_ pose_{};
+  TransformMessage transform_;  // for /tf
 };
 
 // An unordered cloud (height 1) of float32 x, y, z, and with `with_colour` a float32 "rgb"

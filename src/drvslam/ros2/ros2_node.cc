@@ -26,7 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr std::size_t kMaxConsecutiveRejected = 30;
 constexpr dds_duration_t kWaitStep = DDS_MSECS(100);
 // How long the end of a run waits for subscribers to acknowledge the final messages.
 constexpr dds_duration_t kFinalAcknowledgement = DDS_SECS(2);
@@ -198,21 +197,26 @@ class Ros2Node {
     });
   }
 
-  // Runs `convert`; an unusable message is counted and warned about, and too many in a row end
-  // the run.
+  // Runs `convert`; an unusable message (an Error) is rejected.
   template <typename Convert>
   void Guard(const Convert& convert) {
     try {
       convert();
       consecutive_rejected_ = 0;
     } catch (const Error& error) {
-      ++summary_->images_rejected;
-      if (++consecutive_rejected_ >= kMaxConsecutiveRejected) {
-        throw Error(std::to_string(kMaxConsecutiveRejected) +
-                    " messages in a row were unusable; the last: " + error.what());
-      }
-      if (summary_->images_rejected <= 5) spdlog::warn("skipped: {}", error.what());
+      Reject(error);
     }
+  }
+
+  // Counts and warns about an unusable message; too many in a row (the limit `drvslam run`
+  // applies to unreadable frames) end the run.
+  void Reject(const Error& error) {
+    ++summary_->images_rejected;
+    if (++consecutive_rejected_ >= kMaxConsecutiveRejectedFrames) {
+      throw Error(std::to_string(kMaxConsecutiveRejectedFrames) +
+                  " messages in a row were unusable; the last: " + error.what());
+    }
+    if (summary_->images_rejected <= 5) spdlog::warn("skipped: {}", error.what());
   }
 
   // Builds the System once the intrinsics are known; false while they are not.
@@ -239,7 +243,7 @@ class Ros2Node {
       result = system_->TrackRGBD(pair.bgr, pair.depth, static_cast<double>(pair.stamp_ns) * 1e-9);
       consecutive_rejected_ = 0;
     } catch (const Error& error) {
-      Guard([&] { throw error; });
+      Reject(error);
       return;
     }
     ++summary_->pairs_tracked;
@@ -267,6 +271,8 @@ class Ros2Node {
     DenseMapper* dense = system_->Dense();
     if (dense == nullptr || snapshot_.valid()) return;
     const bool with_grid = SecondsSince(last_grid_) >= options_.grid_period_s;
+    // Assembling the dense map costs CPU beside tracking: only for a grid or a subscriber.
+    if (!with_grid && publishers_.dense_map.Subscribers() == 0) return;
     if (with_grid) last_grid_ = Clock::now();
     snapshot_stamp_ns_ = stamp_ns;
     snapshot_ = std::async(std::launch::async, BuildSnapshot, dense, setup_.grid, with_grid);
@@ -325,7 +331,8 @@ class Ros2Node {
       if (DenseMapper* dense = system_->Dense()) {
         const DenseExport exported = ExportDenseMap(*dense, out_dir.string(), setup_.grid);
         if (exported.grid) PublishGrid(exported.grid->grid, last_stamp_ns_);
-        PublishDense(dense->Assemble(), last_stamp_ns_);
+        if (publishers_.dense_map.Subscribers() > 0)
+          PublishDense(dense->Assemble(), last_stamp_ns_);
       }
       PublishMapPoints(last_stamp_ns_);
       run.stats = system_->Stats();
