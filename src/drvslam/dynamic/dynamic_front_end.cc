@@ -404,7 +404,8 @@ Frame DynamicFrontEnd::RemoveDynamicFeatures(Frame frame, const cv::Mat& depth,
       PlanRemoval(regions.instances, regions.potentially_moving, moving, model_ok, size, o);
   const cv::Mat object_mask = RemovalMask(regions.instances, outcome->plan, size, o);
   // Moving things no detector names.
-  outcome->regions = FindTrustedUnlabelledMotion(regions.motion, regions.exclusion, depth, size);
+  outcome->regions = FindTrustedUnlabelledMotion(regions.motion, regions.exclusion, depth, size,
+                                                 frame.Geometry().camera.Fx());
   cv::Mat unlabelled_mask;
   if (!outcome->regions.empty()) {
     unlabelled_mask = cv::Mat::zeros(size, CV_8UC1);
@@ -479,7 +480,7 @@ void DynamicFrontEnd::RememberFrame(MotionRegions regions, std::vector<ObjectEvi
 
 std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
     const MotionConsistencyResult& motion, const cv::Mat& labelled, const cv::Mat& depth,
-    const cv::Size& size) {
+    const cv::Size& size, double focal_px) {
   const DynamicOptions& o = config_.options;
   std::vector<MovingRegion> confirmed;
   if (!o.unlabelled_motion || motion.model == MotionModel::kNone || depth.empty()) {
@@ -490,7 +491,7 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
       WeighUnlabelledEvidence(motion, labelled, report_.sharpness.blurred, o);
   std::vector<MovingRegion> found;
   if (evidence.verdict == UnlabelledVerdict::kTrusted) {
-    found = FindUnlabelledMotion(evidence.tracks, labelled, depth, o);
+    found = FindUnlabelledMotion(evidence.tracks, labelled, depth, o, focal_px);
     const std::vector<int> streaks = persistence_.Update(found, evidence.tracks, size);
     // A frame whose model fits loosely (raised thresholds) needs its regions confirmed by the
     // frames before it; a tight fit is believed at once (a walking person costs no frame).

@@ -284,10 +284,11 @@ class DynamicFrontEnd {
   void WriteObjectRows();
   void WriteFrameRow();
   // Unlabelled motion that holds up (motion_trust.h, motion_persistence.h); fills the report's
-  // unlabelled fields.
+  // unlabelled fields. focal_px: the camera's, for the regions' metric reach.
   std::vector<MovingRegion> FindTrustedUnlabelledMotion(const MotionConsistencyResult& motion,
                                                         const cv::Mat& labelled,
-                                                        const cv::Mat& depth, const cv::Size& size);
+                                                        const cv::Mat& depth, const cv::Size& size,
+                                                        double focal_px);
 
   DynamicFrontEndConfig config_;
   int base_features_;

@@ -4,21 +4,10 @@
 
 #include "drvslam/core/enum_names.h"
 #include "drvslam/core/error.h"
+#include "drvslam/core/lower_median.h"
 #include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
-namespace {
-
-// Lower median; 0 for none.
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + (values.size() - 1) / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
-}  // namespace
-
 const char* UnlabelledVerdictName(UnlabelledVerdict verdict) {
   static constexpr EnumName<UnlabelledVerdict> kNames[] = {
       {UnlabelledVerdict::kTrusted, "trusted"},
@@ -65,9 +54,10 @@ UnlabelledEvidence WeighUnlabelledEvidence(const MotionConsistencyResult& motion
                                    ? options.homography_threshold
                                    : options.epipolar_threshold;
   evidence.epipolar_threshold =
-      std::max(base_epipolar, options.residual_factor * Median(std::move(epipolar)));
-  evidence.reprojection_threshold = std::max(
-      options.reprojection_threshold, options.residual_factor * Median(std::move(reprojection)));
+      std::max(base_epipolar, options.residual_factor * LowerMedian(std::move(epipolar)));
+  evidence.reprojection_threshold =
+      std::max(options.reprojection_threshold,
+               options.residual_factor * LowerMedian(std::move(reprojection)));
 
   evidence.tracks = motion.tracks;
   int anchored_tested = 0;

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/lower_median.h"
 #include "drvslam/core/pixel_index.h"
 
 namespace drvslam {
@@ -25,11 +26,25 @@ int Find(std::vector<int>& parent, int i) {
   return i;
 }
 
+// Flood-fill mask values: pixels the growth may not enter, and those it reached.
+constexpr uint8_t kBlocked = 1;
+constexpr uint8_t kGrown = 255;
+
+// The growth margin around a group at depth `z`: the pixel margin, or the metric reach seen at
+// that depth when it is larger.
+int GrowthMargin(double z, double focal_px, const DynamicOptions& options) {
+  double margin = options.region_margin;
+  if (focal_px > 0.0 && options.region_reach > 0.0 && z > 0.0) {
+    margin = std::max(margin, focal_px * options.region_reach / z);
+  }
+  return static_cast<int>(std::ceil(margin));
+}
+
 }  // namespace
 
 std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tracks,
                                                const cv::Mat& labelled, const cv::Mat& depth,
-                                               const DynamicOptions& options) {
+                                               const DynamicOptions& options, double focal_px) {
   if (depth.empty() || depth.type() != CV_32FC1) {
     throw Error("FindUnlabelledMotion: depth must be CV_32FC1 metres");
   }
@@ -72,23 +87,33 @@ std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tra
   for (int i = 0; i < n; ++i) clusters[Find(parent, i)].push_back(i);
 
   const cv::Rect whole(0, 0, depth.cols, depth.rows);
-  const int margin = static_cast<int>(std::ceil(options.region_margin));
   const float step = static_cast<float>(options.region_depth_step);
   for (const std::vector<int>& cluster : clusters) {
     if (static_cast<int>(cluster.size()) < options.min_cluster_points) continue;
     std::vector<cv::Point> pixels;
+    std::vector<double> depths;
     for (const int i : cluster) {
       pixels.emplace_back(static_cast<int>(points[i].p.x), static_cast<int>(points[i].p.y));
+      depths.push_back(points[i].depth);
     }
+    const double z = LowerMedian(std::move(depths));
+    const int margin = GrowthMargin(z, focal_px, options);
     const cv::Rect spread = cv::boundingRect(pixels);
     const cv::Rect box = cv::Rect(spread.x - margin, spread.y - margin, spread.width + 2 * margin,
                                   spread.height + 2 * margin) &
                          whole;
     if (box.area() <= 0) continue;
-    // Grow over depth-connected pixels from every point of the group, inside the box only.
+    // Grow over depth-connected pixels from every point of the group, inside the box only, and
+    // with the metric reach also within that reach of the group's depth: a surface the mover
+    // touches (the floor under the feet, a wall leaned on) is not followed away from it.
     cv::Mat local = depth(box).clone();
     cv::Mat fill = cv::Mat::zeros(box.height + 2, box.width + 2, CV_8UC1);
-    const int flags = 4 | cv::FLOODFILL_MASK_ONLY | (255 << 8);
+    if (focal_px > 0.0 && options.region_reach > 0.0) {
+      cv::Mat far;
+      cv::compare(cv::abs(local - z), options.region_reach, far, cv::CMP_GT);
+      fill(cv::Rect(1, 1, box.width, box.height)).setTo(kBlocked, far);
+    }
+    const int flags = 4 | cv::FLOODFILL_MASK_ONLY | (kGrown << 8);
     for (const cv::Point& pixel : pixels) {
       const cv::Point seed = pixel - box.tl();
       if (fill.at<uint8_t>(seed.y + 1, seed.x + 1) != 0) continue;
@@ -97,7 +122,7 @@ std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tra
     }
     MovingRegion region;
     region.box = box;
-    region.mask = fill(cv::Rect(1, 1, box.width, box.height)).clone();
+    cv::compare(fill(cv::Rect(1, 1, box.width, box.height)), kGrown, region.mask, cv::CMP_EQ);
     if (!labelled.empty()) {
       cv::Mat outside;
       cv::bitwise_not(labelled(box), outside);

@@ -3,8 +3,13 @@
 // lie outside every potentially-moving mask are grouped: two join when they are close in the image
 // and at similar depth. A group with enough points is one moving thing; its region is grown from
 // the points over depth-connected pixels (neighbours whose depth differs by less than a step)
-// within a margin around them, and every feature there is removed. Isolated moving points are flow
-// noise and are left alone.
+// within a margin around them: Dynamic.regionMargin pixels, or Dynamic.regionReach metres at the
+// group's depth when that is more, as a mover near the camera is large in the image and its
+// moving points sample it sparsely (a walker 1 m from the camera spans half the image, and a
+// 20-pixel margin left most of him in the map). With the reach, growth also stays within it in
+// depth, so a surface joined to the mover (the floor under its feet) is not followed away from
+// it. Every feature on a region is removed. Isolated moving points are flow noise and are left
+// alone.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -24,10 +29,13 @@ struct MovingRegion {
 
 // tracks: MotionConsistency's output. labelled: empty or CV_8UC1 of the depth's size (nonzero =
 // already handled by segmentation; points there are skipped). depth: CV_32FC1 metres (0 = no
-// depth); points without depth are skipped. Throws drvslam::Error on inconsistent sizes/types.
+// depth); points without depth are skipped. focal_px: the camera's focal length in pixels, for
+// Dynamic.regionReach (0: the pixel margin only). Throws drvslam::Error on inconsistent
+// sizes/types.
 std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tracks,
                                                const cv::Mat& labelled, const cv::Mat& depth,
-                                               const DynamicOptions& options);
+                                               const DynamicOptions& options,
+                                               double focal_px = 0.0);
 
 // Paints the regions into `mask` (CV_8UC1 of the image size) with 255.
 void PaintRegions(const std::vector<MovingRegion>& regions, cv::Mat& mask);
