@@ -10,6 +10,7 @@
 #include "drvslam/core/pixel_index.h"
 #include "drvslam/dynamic/dynamic_drawing.h"
 #include "drvslam/dynamic/feature_floor.h"
+#include "drvslam/dynamic/region_carrier.h"
 #include "drvslam/dynamic/removal_policy.h"
 #include "drvslam/map/map_point.h"
 #include "drvslam/semantic/mask_lookup.h"
@@ -485,6 +486,7 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
   std::vector<MovingRegion> confirmed;
   if (!o.unlabelled_motion || motion.model == MotionModel::kNone || depth.empty()) {
     persistence_.Forget();
+    last_confirmed_.clear();
     return confirmed;
   }
   UnlabelledEvidence evidence =
@@ -507,9 +509,21 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
         ++report_.unlabelled_pending;
       }
     }
+    carried_frames_ = 0;
   } else {
     persistence_.Forget();
+    // Through a blurred stretch the movers found just before it are carried along the flow
+    // (region_carrier.h); any other distrust ends them.
+    if (evidence.verdict == UnlabelledVerdict::kBlurred &&
+        carried_frames_ < o.unlabelled_carry_frames) {
+      confirmed = CarryRegions(last_confirmed_, motion.tracks, size);
+      report_.unlabelled_carried = static_cast<int>(confirmed.size());
+      ++carried_frames_;
+    } else {
+      confirmed.clear();
+    }
   }
+  last_confirmed_ = confirmed;
   evidence.tracks.clear();
   report_.unlabelled_evidence = std::move(evidence);
   report_.unlabelled_weighed = true;

@@ -91,6 +91,9 @@ struct DynamicFrameReport {
   bool unlabelled_weighed = false;
   UnlabelledEvidence unlabelled_evidence;  // its tracks are not kept
   int unlabelled_pending = 0;  // regions found but not yet seen in Dynamic.unlabelledFrames frames
+  // Regions carried through a blurred frame from the frames before it (region_carrier.h); they
+  // are among `unlabelled`.
+  int unlabelled_carried = 0;
   MotionModel model = MotionModel::kNone;
   bool pose_ok = false;  // the frame-to-frame pose (reprojection test) was fitted
   int tracks = 0;
@@ -135,6 +138,7 @@ struct DynamicStats {
   std::size_t unlabelled_suppressed_camera = 0;
   std::size_t frames_threshold_raised = 0;
   std::size_t unlabelled_regions_pending = 0;
+  std::size_t unlabelled_regions_carried = 0;  // through blurred frames
   // The feature floor: removed features kept back, and the frames where it acted.
   std::size_t features_kept_back = 0;
   std::size_t frames_floor = 0;
@@ -312,6 +316,10 @@ class DynamicFrontEnd {
   MovingPointCuller culler_;
   BlurDetector blur_;
   MotionPersistence persistence_;
+  // The regions removed in the last frame (found or carried), for a blurred frame to carry, and
+  // how many blurred frames in a row have carried them.
+  std::vector<MovingRegion> last_confirmed_;
+  int carried_frames_ = 0;
 
   std::size_t next_index_ = 0;
   bool begun_ = false;

@@ -58,6 +58,7 @@ void DynamicFrontEnd::RecordStatistics(const MotionRegions& regions,
     }
   }
   stats_.unlabelled_regions_pending += report_.unlabelled_pending;
+  stats_.unlabelled_regions_carried += report_.unlabelled_carried;
   stats_.features_kept_back += report_.kept_back;
   if (report_.kept_back > 0) ++stats_.frames_floor;
   for (const ObjectEvidence& object : objects) {

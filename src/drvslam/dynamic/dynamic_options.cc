@@ -134,6 +134,9 @@ const OptionTable<DynamicOptions>& DynamicOptionTable() {
               "More moving tracks outside masks than this share: the camera model failed.")
         .Int("unlabelledFrames", &D::unlabelled_frames, Bounds::In(1, 255),
              "In a loosely fitting frame a region must move this many frames in a row.")
+        .Int("unlabelledCarryFrames", &D::unlabelled_carry_frames,
+             Bounds::In(0, 10000).Note("0 = off"),
+             "Blurred frames in a row through which the last removed regions are carried.")
         .Int("minKeptFeatures", &D::min_kept_features, Bounds::In(0, 100000).Note("0 = off"),
              "Removal never leaves fewer features (weakest evidence kept back first).")
         // Map points and extraction.

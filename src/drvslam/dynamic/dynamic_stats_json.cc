@@ -25,6 +25,7 @@ nlohmann::json DynamicStatsJson(const DynamicStats& s) {
           {"unlabelled",
            {{"regions", s.unlabelled_regions},
             {"regions_pending", s.unlabelled_regions_pending},
+            {"regions_carried", s.unlabelled_regions_carried},
             {"frames_threshold_raised", s.frames_threshold_raised},
             {"frames_suppressed",
              {{"blur", s.unlabelled_suppressed_blur},
