@@ -4,6 +4,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/dynamic/point_motions.h"
 
 namespace drvslam {
 namespace {
@@ -57,9 +58,7 @@ void DynamicFrontEnd::AwaitKeyFrameMasks() {
 Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& size,
                                               const std::vector<FlowTrack>& tracks) {
   const Stopwatch watch;
-  std::vector<PointMotion> motions;
-  motions.reserve(tracks.size());
-  for (const FlowTrack& track : tracks) motions.push_back({track.prev, track.cur});
+  std::vector<PointMotion> motions = PointMotionsOf(tracks);
   track_history_.push_back(std::move(motions));
   while (track_history_.size() > static_cast<std::size_t>(config_.segmentation.carry_frames)) {
     track_history_.pop_front();

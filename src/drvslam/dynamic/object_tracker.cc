@@ -6,6 +6,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/core/pixel_index.h"
+#include "drvslam/dynamic/point_motions.h"
 #include "drvslam/semantic/mask_lookup.h"
 
 namespace drvslam {
@@ -118,9 +119,7 @@ void ObjectIdTracker::Remember(const std::vector<Instance>& previous,
   }
   if (lost_.empty()) return;
   const cv::Size size = lost_.front().instance.mask.size();
-  std::vector<PointMotion> motions;
-  motions.reserve(tracks.size());
-  for (const FlowTrack& track : tracks) motions.push_back({track.prev, track.cur});
+  const std::vector<PointMotion> motions = PointMotionsOf(tracks);
   std::vector<Lost> still;
   for (Lost& lost : lost_) {
     std::vector<Instance> carried = carrier_.Carry({lost.instance}, motions, size);

@@ -1,45 +1,32 @@
 #include "drvslam/dynamic/region_carrier.h"
 
-#include <cmath>
-
-#include "drvslam/core/lower_median.h"
-#include "drvslam/core/pixel_index.h"
-
 namespace drvslam {
-namespace {
-
-bool StartsOn(const MovingRegion& region, const FlowTrack& track) {
-  cv::Point pixel;
-  if (!PixelIndex(track.prev, &pixel) || !region.box.contains(pixel)) return false;
-  return region.mask.at<uint8_t>(pixel - region.box.tl()) != 0;
-}
-
-}  // namespace
 
 std::vector<MovingRegion> CarryRegions(const std::vector<MovingRegion>& regions,
-                                       const std::vector<FlowTrack>& tracks, const cv::Size& size) {
+                                       const std::vector<FlowTrack>& tracks, const cv::Size& size,
+                                       const ObjectMaskCarrier& carrier) {
   const cv::Rect whole(0, 0, size.width, size.height);
+  // The carrier moves whole-image masks; source_id keeps each one's region.
+  std::vector<Instance> instances;
+  for (std::size_t r = 0; r < regions.size(); ++r) {
+    const MovingRegion& region = regions[r];
+    const cv::Rect box = region.box & whole;
+    if (region.mask.size() != region.box.size() || box.empty()) continue;
+    Instance instance;
+    instance.mask = cv::Mat::zeros(size, CV_8UC1);
+    region.mask(cv::Rect(box.tl() - region.box.tl(), box.size())).copyTo(instance.mask(box));
+    instance.box = box;
+    instance.source_id = static_cast<int>(r);
+    instances.push_back(std::move(instance));
+  }
+  if (instances.empty()) return {};
   std::vector<MovingRegion> carried;
-  for (const MovingRegion& region : regions) {
-    if (region.mask.size() != region.box.size()) continue;
-    std::vector<double> dx;
-    std::vector<double> dy;
-    for (const FlowTrack& track : tracks) {
-      if (!StartsOn(region, track)) continue;
-      dx.push_back(track.cur.x - track.prev.x);
-      dy.push_back(track.cur.y - track.prev.y);
-    }
-    if (static_cast<int>(dx.size()) < kMinCarryTracks) continue;
-    const cv::Point shift(static_cast<int>(std::lround(LowerMedian(std::move(dx)))),
-                          static_cast<int>(std::lround(LowerMedian(std::move(dy)))));
-    const cv::Rect moved = cv::Rect(region.box.tl() + shift, region.box.size());
-    const cv::Rect kept = moved & whole;
-    if (kept.area() <= 0) continue;
-    MovingRegion next;
-    next.box = kept;
-    next.mask = region.mask(cv::Rect(kept.tl() - moved.tl(), kept.size())).clone();
-    next.points = region.points;
-    carried.push_back(std::move(next));
+  for (const Instance& moved : carrier.Carry(instances, PointMotionsOf(tracks), size)) {
+    MovingRegion region;
+    region.box = moved.box;
+    region.mask = moved.mask(moved.box).clone();
+    region.points = regions[static_cast<std::size_t>(moved.source_id)].points;
+    carried.push_back(std::move(region));
   }
   return carried;
 }
