@@ -121,7 +121,8 @@ const bool kSynthCommandRegistered = RegisterCommand("synth", [](CLI::App& root)
   CLI::App* cmd = root.add_subcommand(
       "synth",
       "Synthetic dynamic RGB-D sequence with exact ground truth (poses, depth, instance masks, "
-      "moving flags): a furnished room, people walking or sitting, a TUM-like camera path");
+      "moving flags): a furnished room, people walking or sitting or carts pushed, a TUM-like "
+      "camera path");
   cmd->add_option("--scenario", o.scenario, "one of: " + synth::ScenarioNames())
       ->capture_default_str();
   cmd->add_option("--out", args->out,
@@ -141,9 +142,11 @@ const bool kSynthCommandRegistered = RegisterCommand("synth", [](CLI::App& root)
   cmd->add_flag("--procedural-textures", o.procedural_textures,
                 "paint every texture procedurally (no photographs)");
   cmd->add_option("--actors", o.actors,
-                  "number of actors (default: 2 for walking_* and sitting_*, 0 for static_*)");
-  cmd->add_option("--actor-class", o.actor_class, "COCO class of the actors")
-      ->capture_default_str();
+                  "number of actors (default: 2 for walking_*, sitting_* and pushed_*, 0 for "
+                  "static_*)");
+  cmd->add_option("--actor-class", o.actor_class,
+                  "COCO class the actors are labelled with (default: person, or cart for "
+                  "pushed_*, a class no COCO model names)");
   cmd->add_option("--billboards", o.billboards,
                   "folder of RGBA PNG cut-outs (e.g. people cut out of photographs; alpha 0 is "
                   "transparent): actors are drawn as these pictures, turned to the camera");

@@ -47,4 +47,9 @@ std::string CocoClassName(int id) {
   return std::string(CocoClassNames()[id]);
 }
 
+std::vector<std::string> DefaultMovingCocoClasses() {
+  return {"person", "bicycle", "car", "motorcycle", "bus",   "truck",
+          "bird",   "cat",     "dog", "horse",      "sheep", "cow"};
+}
+
 }  // namespace drvslam

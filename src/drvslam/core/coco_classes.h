@@ -5,6 +5,7 @@
 #include <array>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace drvslam {
 
@@ -17,5 +18,9 @@ int CocoClassId(std::string_view name);
 
 // Name of a class id, or "class<id>" outside 0..79.
 std::string CocoClassName(int id);
+
+// The classes that move by themselves (people, vehicles, animals): Segmentation.movingClasses'
+// default, and what a synthetic sequence with movers of another class extends.
+std::vector<std::string> DefaultMovingCocoClasses();
 
 }  // namespace drvslam

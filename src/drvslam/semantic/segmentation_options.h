@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "drvslam/core/coco_classes.h"
 #include "drvslam/core/option_table.h"
 #include "drvslam/core/settings_file.h"
 
@@ -73,9 +74,7 @@ struct SegmentationOptions {
   // starting inside it cannot be carried and disappears.
   int carry_min_support = 3;
 
-  std::vector<std::string> moving_classes = {"person", "bicycle", "car",   "motorcycle",
-                                             "bus",    "truck",   "bird",  "cat",
-                                             "dog",    "horse",   "sheep", "cow"};
+  std::vector<std::string> moving_classes = DefaultMovingCocoClasses();
   std::vector<std::string> key_objects = {"book", "laptop", "keyboard",   "mouse", "tv",
                                           "cup",  "bottle", "cell phone", "remote"};
 

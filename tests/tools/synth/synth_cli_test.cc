@@ -138,8 +138,9 @@ TEST(SynthCliTest, HelpAndListDocumentTheOptions) {
   }
   const CliRun list = RunCli("synth --list");
   EXPECT_EQ(list.status, 0);
-  for (const char* name : {"walking_xyz", "walking_static", "walking_rpy", "walking_halfsphere",
-                           "sitting_static", "sitting_xyz", "static_xyz", "static_halfsphere"}) {
+  for (const char* name :
+       {"walking_xyz", "walking_static", "walking_rpy", "walking_halfsphere", "sitting_static",
+        "sitting_xyz", "pushed_xyz", "static_xyz", "static_halfsphere"}) {
     EXPECT_NE(list.output.find(name), std::string::npos) << name;
   }
 }

@@ -425,6 +425,31 @@ PersonBody MakeBody(double height, double seat_height, uint64_t seed, int actor,
   return body;
 }
 
+// A cart's crate: packaging print, in a colour of its own.
+int CartTexture(uint64_t seed, int actor, TextureBank* bank) {
+  Random rng(SubSeed(seed, RandomStream::kCartTextures, static_cast<uint64_t>(actor)));
+  const Eigen::Vector2d atlas = BoxAtlasSize(Eigen::Vector3d(kCartWidth, kCartLength, kCartHeight));
+  TextureRequest r;
+  r.width_m = atlas.x();
+  r.height_m = atlas.y();
+  r.texels_per_metre = kTexelDensity;
+  r.style = TextureStyle::kLabel;
+  r.colour = cv::Vec3b(static_cast<uint8_t>(rng.Uniform(40, 220)),
+                       static_cast<uint8_t>(rng.Uniform(40, 220)),
+                       static_cast<uint8_t>(rng.Uniform(40, 220)));
+  r.seed = rng.Bits();
+  return bank->Add(r);
+}
+
+// The cart at its state: a crate standing on the floor, its long
+// side along the heading. Only position and heading count; a walker's pose does not.
+void AppendCart(int texture, const ActorState& state, int instance_id, TriangleList* out) {
+  const Eigen::Matrix3d R(Eigen::AngleAxisd(state.heading - 0.5 * M_PI, Eigen::Vector3d::UnitZ()));
+  const SE3 pose(R, Eigen::Vector3d(state.position.x(), state.position.y(), 0.5 * kCartHeight));
+  AddBox(pose, Eigen::Vector3d(kCartWidth, kCartLength, kCartHeight), {texture, instance_id, false},
+         out);
+}
+
 }  // namespace
 
 ActorSet::ActorSet(const ActorOptions& options, const RoomLayout& layout,
@@ -449,8 +474,12 @@ ActorSet::ActorSet(const ActorOptions& options, const RoomLayout& layout,
     actor.class_name = options.class_name;
     actor.coco_id = options.coco_id;
     const double height = rng.Uniform(1.6, 1.85);
-    actor.body = MakeBody(height, layout.stool_height, options.seed, k, bank);
-    if (k < options.billboard_count) {
+    if (options.shape == ActorShape::kCart) {
+      actor.cart_texture = CartTexture(options.seed, k, bank);
+    } else {
+      actor.body = MakeBody(height, layout.stool_height, options.seed, k, bank);
+    }
+    if (options.shape == ActorShape::kPerson && k < options.billboard_count) {
       const cv::Mat& image = options.billboards[k % options.billboards.size()];
       actor.billboard_texture = bank->AddImage(image);
       actor.billboard_width = height * image.cols / image.rows;
@@ -495,6 +524,10 @@ TriangleList ActorSet::Triangles(int actor, int frame) const {
   TriangleList out;
   const Actor& a = actors_[actor];
   const ActorState& s = State(actor, frame);
+  if (a.cart_texture >= 0) {
+    AppendCart(a.cart_texture, s, a.instance_id, &out);
+    return out;
+  }
   if (a.billboard_texture >= 0) {
     const Eigen::Vector3d& camera = camera_positions_[static_cast<std::size_t>(frame + 1)];
     Eigen::Vector2d facing = camera.head<2>() - s.position;

@@ -1,10 +1,11 @@
-// Actors: the potentially-moving objects of a scenario (people by default). Walkers roam a
-// graph of lanes around the table at 0.5 to 1.5 m/s - turning, pausing, leaving the view through
-// the room's sides, coming back, sometimes sitting down on a stool - and wait rather than walk
-// into each other or the camera. Sitters stay seated (or standing) with the small motions of
-// TUM's sitting sequences: slow sway, and now and then a gesture, a turn or a look around.
+// Actors: the potentially-moving objects of a scenario (people by default, or pushed carts).
+// Walkers roam a graph of lanes around the table at 0.5 to 1.5 m/s - turning, pausing, leaving the
+// view through the room's sides, coming back, sometimes sitting down on a stool - and wait rather
+// than walk into each other or the camera. Sitters stay seated (or standing) with the small motions
+// of TUM's sitting sequences: slow sway, and now and then a gesture, a turn or a look around.
 // Everything is simulated once, frame by frame, from the seed; an actor's geometry at a frame is
-// then a pure function of its stored state.
+// then a pure function of its stored state. A cart is pushed along the walkers' lanes by someone
+// out of view: it moves as a walker would, rigidly, and waits where a walker would sit.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,10 +28,18 @@ namespace drvslam::synth {
 inline constexpr double kMovingThreshold = 0.01;
 
 enum class ActorBehaviour { kWalking, kSitting };
+enum class ActorShape { kPerson, kCart };
+
+// A cart: a crate pushed across the floor, about waist high (length along its heading, width,
+// height).
+inline constexpr double kCartLength = 0.8;
+inline constexpr double kCartWidth = 0.55;
+inline constexpr double kCartHeight = 0.95;
 
 struct ActorOptions {
   int count = 2;
   ActorBehaviour behaviour = ActorBehaviour::kWalking;
+  ActorShape shape = ActorShape::kPerson;  // carts are never billboards
   std::string class_name = "person";
   int coco_id = 0;
   // Cut-out images (CV_8UC4); the first billboard_count actors use them in turn.
@@ -83,6 +92,7 @@ class ActorSet {
     std::string class_name;
     int coco_id = 0;
     PersonBody body;
+    int cart_texture = -1;  // a cart's crate (>= 0 for carts only)
     int billboard_texture = -1;
     double billboard_width = 0.0;
     // states[f + 1] is the state at frame f.

@@ -23,6 +23,7 @@ enum class RandomStream : uint64_t {
   kActors = 4,
   kSensor = 5,
   kActorTextures = 6,
+  kCartTextures = 7,
 };
 
 // A 32-bit seed for one sub-stream (and optional index within it) of the user's seed.

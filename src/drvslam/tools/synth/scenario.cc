@@ -27,6 +27,10 @@ std::vector<Scenario> MakeScenarios() {
     scenarios.push_back(
         {"sitting" + suffix, MotionKind::kSitting, path.kind, 2,
          std::string("two people seated at the table, gesturing a little; ") + path.text});
+    scenarios.push_back(
+        {"pushed" + suffix, MotionKind::kPushed, path.kind, 2,
+         std::string("two carts pushed through the room (a mover no COCO class names); ") +
+             path.text});
     scenarios.push_back({"static" + suffix, MotionKind::kStatic, path.kind, 0,
                          std::string("the same room without people; ") + path.text});
   }

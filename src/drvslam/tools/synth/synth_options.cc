@@ -19,6 +19,10 @@ std::string CocoName(std::string name) {
 
 }  // namespace
 
+std::string SynthOptions::ActorClassName() const {
+  return actor_class.empty() ? FindScenario(scenario).ActorClass() : CocoName(actor_class);
+}
+
 void SynthOptions::Check() const {
   const Scenario& chosen = FindScenario(scenario);
   if (frames == 0 || frames < -1 || frames > kMaxFrames) {
@@ -34,11 +38,14 @@ void SynthOptions::Check() const {
   }
   if (chosen.motion == MotionKind::kStatic && actors > 0) {
     throw Error("--actors " + std::to_string(actors) + ": scenario " + scenario +
-                " has no movers (use a walking_* or sitting_* scenario)");
+                " has no movers (use a walking_*, sitting_* or pushed_* scenario)");
   }
   if (billboard_count < -1 || billboard_count > kMaxActors) {
     throw Error("--billboard-count " + std::to_string(billboard_count) + " must be in 0.." +
                 std::to_string(kMaxActors));
+  }
+  if (!billboards.empty() && chosen.motion == MotionKind::kPushed) {
+    throw Error("--billboards: the carts of scenario " + scenario + " are not drawn as cut-outs");
   }
   if (billboard_count > 0 && billboards.empty()) {
     throw Error("--billboard-count needs --billboards DIR");
@@ -46,7 +53,10 @@ void SynthOptions::Check() const {
   if (procedural_textures && !textures.empty()) {
     throw Error("--textures and --procedural-textures exclude each other");
   }
-  if (CocoClassId(CocoName(actor_class)) < 0) {
+  // The scenario's own class is accepted by name too: settings.yaml states it (Synth.ActorClass)
+  // and dense_truth.cc rebuilds a sequence from it.
+  if (!actor_class.empty() && CocoClassId(CocoName(actor_class)) < 0 &&
+      CocoName(actor_class) != chosen.ActorClass()) {
     throw Error("--actor-class '" + actor_class + "' is not a COCO class name");
   }
   if (width < 32 || width > 4096 || height < 32 || height > 4096) {

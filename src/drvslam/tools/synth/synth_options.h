@@ -35,8 +35,10 @@ struct SynthOptions {
   std::string billboards;
   int billboard_count = -1;  // actors drawn as billboards (-1: all when billboards is set)
   int actors = -1;           // -1: the scenario's default
-  std::string actor_class = "person";  // a COCO class name (spaces or underscores)
-  int width = 640;                     // TUM fr3 intrinsics are scaled to this size
+  // A COCO class name (spaces or underscores) that relabels the actors; empty: the scenario's
+  // own (Scenario::ActorClass).
+  std::string actor_class;
+  int width = 640;  // TUM fr3 intrinsics are scaled to this size
   int height = 480;
   double fps = 30.0;
   // The camera path runs this many times faster (a quickly moved hand-held camera: more motion
@@ -51,6 +53,8 @@ struct SynthOptions {
 
   // Throws Error naming the option (as its command-line flag) and the bad value.
   void Check() const;
+  // The actors' class name (spaces, not underscores): actor_class, or the scenario's own.
+  std::string ActorClassName() const;
   // The camera the images are rendered with: TUM fr3 intrinsics scaled to width x height, and
   // real_camera's lens distortion (none by default).
   CameraOptions Camera() const;

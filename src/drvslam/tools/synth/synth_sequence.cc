@@ -26,13 +26,6 @@ const SynthOptions& Checked(const SynthOptions& options) {
   return options;
 }
 
-std::string CocoName(std::string name) {
-  for (char& ch : name) {
-    if (ch == '_') ch = ' ';
-  }
-  return name;
-}
-
 template <typename T>
 std::string Number(T value) {
   char buffer[64];
@@ -104,7 +97,9 @@ SynthSequence::SynthSequence(const SynthOptions& options)
                             : (options_.actors >= 0 ? options_.actors : scenario_->default_actors);
   actor_options.behaviour = scenario_->motion == MotionKind::kSitting ? ActorBehaviour::kSitting
                                                                       : ActorBehaviour::kWalking;
-  actor_options.class_name = CocoName(options_.actor_class);
+  actor_options.shape =
+      scenario_->motion == MotionKind::kPushed ? ActorShape::kCart : ActorShape::kPerson;
+  actor_options.class_name = options_.ActorClassName();
   actor_options.coco_id = CocoClassId(actor_options.class_name);
   actor_options.billboards = billboards;
   actor_options.billboard_count =
@@ -212,8 +207,15 @@ std::string SynthSequence::SettingsExtraYaml() const {
   add("Seed", Number(static_cast<long long>(options_.seed)));
   add("Frames", Number(FrameCount()));
   add("Actors", Number(actors_.Count()));
-  add("ActorClass",
-      option_format::YamlText(actors_.Count() > 0 ? CocoName(options_.actor_class) : ""));
+  add("ActorClass", option_format::YamlText(actors_.Count() > 0 ? options_.ActorClassName() : ""));
+  // A class no COCO model names (the carts) is a mover only when listed: ground-truth masks then
+  // remove it as they remove people.
+  const std::string actor_class = options_.ActorClassName();
+  if (actors_.Count() > 0 && CocoClassId(actor_class) < 0) {
+    std::vector<std::string> moving = DefaultMovingCocoClasses();
+    moving.push_back(actor_class);
+    yaml += "Segmentation.movingClasses: " + option_format::YamlList(moving) + "\n";
+  }
   add("Billboards", option_format::YamlText(options_.billboards));
   add("Path", option_format::YamlText(PathKindName(path_.Kind())));
   add("Trajectory", option_format::YamlText(options_.trajectory));
