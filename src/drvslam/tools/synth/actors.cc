@@ -441,8 +441,8 @@ int CartTexture(uint64_t seed, int actor, TextureBank* bank) {
   return bank->Add(r);
 }
 
-// The cart at its state: a crate standing on the floor, its long
-// side along the heading. Only position and heading count; a walker's pose does not.
+// The cart at its state: a crate standing on the floor, its long side along the heading. Only
+// position and heading count; a walker's pose does not.
 void AppendCart(int texture, const ActorState& state, int instance_id, TriangleList* out) {
   const Eigen::Matrix3d R(Eigen::AngleAxisd(state.heading - 0.5 * M_PI, Eigen::Vector3d::UnitZ()));
   const SE3 pose(R, Eigen::Vector3d(state.position.x(), state.position.y(), 0.5 * kCartHeight));
