@@ -168,40 +168,65 @@ MovingRegion Region(const cv::Rect& box, std::vector<int> members) {
   return region;
 }
 
+// Six tracks moved 5 px right in a frame, from previous positions x - 5 ... x + 10, y 100-110.
+std::vector<FlowTrack> TracksMovingRight(float x) {
+  std::vector<FlowTrack> tracks;
+  for (int i = 0; i < 6; ++i) {
+    FlowTrack track;
+    track.prev = {x - 5.0f + 3.0f * i, 100.0f + 2.0f * i};
+    track.cur = track.prev + cv::Point2f(5, 0);
+    tracks.push_back(track);
+  }
+  return tracks;
+}
+
 TEST(MotionPersistenceTest, ARegionCountsTheFramesItsPointsHaveBeenMoving) {
   const cv::Size image(320, 240);
-  // Points moving right by 5 px a frame, inside a region that follows them.
-  const auto tracks_at = [](float x) {
-    std::vector<FlowTrack> tracks;
-    for (int i = 0; i < 6; ++i) {
-      FlowTrack track;
-      track.prev = {x - 5.0f + 3.0f * i, 100.0f + 2.0f * i};
-      track.cur = track.prev + cv::Point2f(5, 0);
-      tracks.push_back(track);
-    }
-    return tracks;
-  };
   MotionPersistence persistence;
-  EXPECT_EQ(
-      persistence.Update({Region({95, 90, 30, 30}, {0, 1, 2, 3, 4, 5})}, tracks_at(100), image),
-      std::vector<int>{1});
-  EXPECT_EQ(
-      persistence.Update({Region({100, 90, 30, 30}, {0, 1, 2, 3, 4, 5})}, tracks_at(105), image),
-      std::vector<int>{2});
-  EXPECT_EQ(
-      persistence.Update({Region({105, 90, 30, 30}, {0, 1, 2, 3, 4, 5})}, tracks_at(110), image),
-      std::vector<int>{3});
+  EXPECT_EQ(persistence.Update({Region({95, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(100), image),
+            std::vector<int>{1});
+  EXPECT_EQ(persistence.Update({Region({100, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(105), image),
+            std::vector<int>{2});
+  EXPECT_EQ(persistence.Update({Region({105, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(110), image),
+            std::vector<int>{3});
   // Elsewhere in the image: a new thing.
   EXPECT_EQ(persistence.Update(
                 {Region({105, 90, 30, 30}, {0, 1, 2, 3, 4, 5}), Region({200, 150, 20, 20}, {})},
-                tracks_at(115), image),
+                TracksMovingRight(115), image),
             (std::vector<int>{4, 1}));
   // A frame without believed evidence breaks the chain.
   persistence.Forget();
-  EXPECT_EQ(
-      persistence.Update({Region({110, 90, 30, 30}, {0, 1, 2, 3, 4, 5})}, tracks_at(120), image),
-      std::vector<int>{1});
-  EXPECT_THROW(persistence.Update({Region({0, 0, 10, 10}, {7})}, tracks_at(0), image), Error);
+  EXPECT_EQ(persistence.Update({Region({110, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(120), image),
+            std::vector<int>{1});
+  EXPECT_THROW(persistence.Update({Region({0, 0, 10, 10}, {7})}, TracksMovingRight(0), image),
+               Error);
+}
+
+TEST(MotionPersistenceTest, RegionsCarriedThroughADistrustedFrameStayConfirmed) {
+  const cv::Size image(320, 240);
+  MotionPersistence persistence;
+  persistence.Update({Region({95, 90, 30, 30}, {0, 1, 2, 3, 4, 5})}, TracksMovingRight(100), image);
+  // Two frames without believed evidence: the region is carried (no members) with the streak
+  // that confirms a region (2), then found again where the carrying left it.
+  persistence.Carry({Region({100, 90, 30, 30}, {})}, image, 2);
+  persistence.Carry({Region({105, 90, 30, 30}, {})}, image, 2);
+  EXPECT_EQ(persistence.Update({Region({110, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(115), image),
+            std::vector<int>{3});
+  // Points whose previous positions miss the carried region start over.
+  persistence.Carry({Region({110, 90, 30, 30}, {})}, image, 2);
+  EXPECT_EQ(persistence.Update({Region({200, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(215), image),
+            std::vector<int>{1});
+  // Carrying nothing breaks that new chain, as Forget does (without it: 2).
+  persistence.Carry({}, image, 2);
+  EXPECT_EQ(persistence.Update({Region({205, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(220), image),
+            std::vector<int>{1});
 }
 
 TEST(FeatureFloorTest, KeepsBackTheWeakestRemovalsFirst) {

@@ -511,16 +511,18 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
     }
     carried_frames_ = 0;
   } else {
-    persistence_.Forget();
-    // Through a blurred stretch the movers found just before it are carried along the flow
-    // (region_carrier.h); any other distrust ends them.
-    if (evidence.verdict == UnlabelledVerdict::kBlurred &&
-        carried_frames_ < o.unlabelled_carry_frames) {
+    // A frame whose evidence is not believed cannot find movers, nor show that the ones found
+    // just before stopped: they are carried along the flow (region_carrier.h) through such a
+    // stretch, blurred, misfitting or judged a camera failure alike, and stay confirmed for
+    // the next believed frame.
+    if (carried_frames_ < o.unlabelled_carry_frames) {
       confirmed = CarryRegions(last_confirmed_, motion.tracks, size);
       report_.unlabelled_carried = static_cast<int>(confirmed.size());
+      persistence_.Carry(confirmed, size, o.unlabelled_frames);
       ++carried_frames_;
     } else {
       confirmed.clear();
+      persistence_.Forget();
     }
   }
   last_confirmed_ = confirmed;

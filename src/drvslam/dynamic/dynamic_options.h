@@ -144,9 +144,11 @@ struct DynamicOptions {
   // frames (its points' previous positions inside the previous frame's region); a tightly
   // fitting frame's regions go at once (1 = always at once).
   int unlabelled_frames = 2;
-  // Dynamic.unlabelledCarryFrames: through at most this many blurred frames in a row, the
-  // regions removed just before are carried along the flow and still removed
-  // (region_carrier.h; 0 = off). 30: a second at 30 Hz, about as long as a quick pan blurs.
+  // Dynamic.unlabelledCarryFrames: through at most this many frames in a row whose evidence is
+  // not believed (blurred, misfitting, or judged a camera failure), the regions removed just
+  // before are carried along the flow and still removed, and stay confirmed for the next
+  // believed frame (region_carrier.h; 0 = off). 30: a second at 30 Hz, about as long as a
+  // quick pan blurs.
   int unlabelled_carry_frames = 30;
 
   // Dynamic.minKeptFeatures: removal never leaves fewer features than this; features are kept

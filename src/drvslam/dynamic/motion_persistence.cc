@@ -35,6 +35,17 @@ std::vector<int> MotionPersistence::Update(const std::vector<MovingRegion>& regi
     }
     streaks.push_back(std::min(previous + 1, 255));
   }
+  Remember(regions, streaks, image);
+  return streaks;
+}
+
+void MotionPersistence::Carry(const std::vector<MovingRegion>& carried, const cv::Size& image,
+                              int streak) {
+  Remember(carried, std::vector<int>(carried.size(), std::clamp(streak, 1, 255)), image);
+}
+
+void MotionPersistence::Remember(const std::vector<MovingRegion>& regions,
+                                 const std::vector<int>& streaks, const cv::Size& image) {
   cv::Mat next = cv::Mat::zeros(image, CV_8UC1);
   const cv::Rect whole(0, 0, image.width, image.height);
   for (std::size_t r = 0; r < regions.size(); ++r) {
@@ -47,7 +58,6 @@ std::vector<int> MotionPersistence::Update(const std::vector<MovingRegion>& regi
     cv::max(roi, masked, roi);
   }
   streaks_ = next;
-  return streaks;
 }
 
 void MotionPersistence::Forget() { streaks_.release(); }

@@ -22,10 +22,19 @@ class MotionPersistence {
   // a region names a track that does not exist.
   std::vector<int> Update(const std::vector<MovingRegion>& regions,
                           const std::vector<FlowTrack>& tracks, const cv::Size& image);
-  // A frame whose motion evidence is not believed breaks every chain.
+  // A frame whose motion evidence is not believed, and whose confirmed regions were carried
+  // through it (region_carrier.h): the carried regions continue their chains with `streak`
+  // frames (the count that confirms a region), so the next believed frame's regions that
+  // overlap them are confirmed at once rather than starting over.
+  void Carry(const std::vector<MovingRegion>& carried, const cv::Size& image, int streak);
+  // A frame whose motion evidence is not believed and that carries nothing breaks every chain.
   void Forget();
 
  private:
+  // The regions painted with their streaks into a new previous-frame image.
+  void Remember(const std::vector<MovingRegion>& regions, const std::vector<int>& streaks,
+                const cv::Size& image);
+
   cv::Mat streaks_;  // CV_8UC1 of the previous frame: consecutive frames seen moving, 0 = none
 };
 
