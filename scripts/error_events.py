@@ -10,6 +10,12 @@ alignment eval.json holds (`drvslam eval --json`), so the per-frame errors are t
 summarises. Prints the worst stretches of --window frames (by mean error, not overlapping) with
 the events in them (masks, movers' share, features removed, keyframes, lost frames, unlabelled
 regions, carried masks), and with --tsv writes one line per frame: error and events.
+
+It also splits the error by how fast it changes. Per-frame noise is read from the second
+difference of consecutive positions (white noise of sigma gives sqrt(6) sigma; a smooth camera
+path gives almost none, the ground truth shows how little). The ATE of the estimate averaged over
+--smooth frames (a centred window, same alignment) is the slow part: drift and bias that
+no per-frame filter can remove.
 Only the standard library: it runs wherever python3 does.
 """
 import argparse
@@ -65,8 +71,50 @@ def per_frame_errors(estimate, truth, alignment, max_diff=0.02):
             continue
         q = [scale * sum(rot[r][c] * p[c] for c in range(3)) + trans[r] for r in range(3)]
         g = truth[j][1]
-        errors.append((t, math.sqrt(sum((q[k] - g[k]) ** 2 for k in range(3)))))
+        errors.append((t, math.sqrt(sum((q[k] - g[k]) ** 2 for k in range(3))), q, g))
     return errors
+
+
+def consecutive_triples(stamps):
+    """Indices i of frames i-1, i, i+1 that are evenly spaced: no skipped frame between them."""
+    gaps = sorted(b - a for a, b in zip(stamps, stamps[1:]))
+    if not gaps:
+        return []
+    period = gaps[len(gaps) // 2]
+    even = lambda a, b: abs((b - a) - period) <= 0.25 * period
+    return [i for i in range(1, len(stamps) - 1)
+            if even(stamps[i - 1], stamps[i]) and even(stamps[i], stamps[i + 1])]
+
+
+def second_difference_rms(positions, triples):
+    """RMS norm of p[i-1] - 2 p[i] + p[i+1] over the given i."""
+    if not triples:
+        return float("nan")
+    total = 0.0
+    for i in triples:
+        total += sum((positions[i - 1][k] - 2 * positions[i][k] + positions[i + 1][k]) ** 2
+                     for k in range(3))
+    return math.sqrt(total / len(triples))
+
+
+def noise_and_slow_error(matched, window):
+    """(estimate's second-difference RMS, ground truth's, per-frame noise sigma, ATE of the
+    estimate averaged over `window` frames), all in metres. `matched` holds (t, aligned estimate,
+    ground truth) per frame, in time order."""
+    stamps = [t for t, _, _ in matched]
+    estimate = [p for _, p, _ in matched]
+    truth = [g for _, _, g in matched]
+    triples = consecutive_triples(stamps)
+    jitter = second_difference_rms(estimate, triples)
+    truth_jitter = second_difference_rms(truth, triples)
+    noise = math.sqrt(max(jitter ** 2 - truth_jitter ** 2, 0.0) / 6.0)
+    half = window // 2
+    squared = 0.0
+    for i, g in enumerate(truth):
+        part = estimate[max(0, i - half):i + half + 1]
+        mean = [sum(p[k] for p in part) / len(part) for k in range(3)]
+        squared += sum((mean[k] - g[k]) ** 2 for k in range(3))
+    return jitter, truth_jitter, noise, math.sqrt(squared / len(truth))
 
 
 def events_of(rows):
@@ -95,6 +143,7 @@ def main():
     parser.add_argument("ground_truth", nargs="?")
     parser.add_argument("--window", type=int, default=15)
     parser.add_argument("--worst", type=int, default=3)
+    parser.add_argument("--smooth", type=int, default=9)
     parser.add_argument("--tsv")
     args = parser.parse_args()
 
@@ -116,8 +165,14 @@ def main():
     errors = per_frame_errors(estimate, truth, alignment)
     if not errors:
         sys.exit("error: %s: no pose matches the ground truth in time" % run)
+    matched = [(t, q, g) for t, _, q, g in errors]
+    errors = [(t, e) for t, e, _, _ in errors]
     rmse = math.sqrt(sum(e * e for _, e in errors) / len(errors))
     print("%d poses matched, ATE RMSE %.2f cm" % (len(errors), 100 * rmse))
+    jitter, truth_jitter, noise, slow = noise_and_slow_error(matched, args.smooth)
+    print("per-frame noise %.2f cm (second difference RMS %.2f cm, ground truth's %.2f cm); "
+          "averaged over %d frames: ATE %.2f cm" % (100 * noise, 100 * jitter, 100 * truth_jitter,
+                                                   args.smooth, 100 * slow))
 
     taken = []
     order = sorted(range(len(errors) - args.window + 1),

@@ -1,0 +1,86 @@
+"""scripts/error_events.py on a run whose error is known: white noise on top of a slow drift.
+
+The estimate is the ground-truth path plus a slow sway (the drift) plus independent noise per
+frame. The script must find the noise's sigma from the second differences, and averaging over a
+window must leave about the sway alone. Frames left out of the estimate (skipped, as in a realtime
+run) must not be read as noise.
+"""
+import json
+import math
+import os
+import random
+import re
+import subprocess
+import sys
+
+SCRIPT = os.path.join(os.environ.get("DRVSLAM_SOURCE_DIR", "."), "scripts", "error_events.py")
+FRAMES = 450
+PERIOD = 1.0 / 30.0
+NOISE_M = 0.004
+SWAY_M = 0.01
+
+
+def truth_position(i, speed):
+    """A handheld-like path at about `speed` m/s: far from constant velocity only slowly."""
+    t = i * PERIOD
+    return [speed * t, 0.1 * math.sin(0.8 * t), 0.05 * math.cos(0.5 * t)]
+
+
+def write_run(tmp_path, skipped=(), speed=0.3):
+    rng = random.Random(7)
+    truth_lines, estimate_lines, log_lines = [], [], ["frame\ttimestamp\ttracked\tkeyframe"]
+    for i in range(FRAMES):
+        stamp = 1000.0 + i * PERIOD
+        g = truth_position(i, speed)
+        truth_lines.append("%.6f %.9f %.9f %.9f 0 0 0 1" % (stamp, *g))
+        # The noise is drawn for every frame, so a skipped frame leaves the others' unchanged.
+        noise = [rng.gauss(0.0, NOISE_M) for _ in range(3)]
+        if i in skipped:
+            continue
+        sway = SWAY_M * math.sin(2 * math.pi * i / 150.0)
+        e = [g[0] + sway + noise[0], g[1] + noise[1], g[2] + noise[2]]
+        estimate_lines.append("%.6f %.9f %.9f %.9f 0 0 0 1" % (stamp, *e))
+        log_lines.append("%d\t%.6f\t1\t0" % (i + 1, stamp))
+    (tmp_path / "truth.txt").write_text("\n".join(truth_lines) + "\n")
+    (tmp_path / "CameraTrajectory.txt").write_text("\n".join(estimate_lines) + "\n")
+    (tmp_path / "frames.tsv").write_text("\n".join(log_lines) + "\n")
+    identity = {"rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "translation": [0, 0, 0],
+                "scale": 1.0}
+    (tmp_path / "eval.json").write_text(json.dumps({"alignment": identity}))
+
+
+def run_script(tmp_path):
+    result = subprocess.run([sys.executable, SCRIPT, str(tmp_path), str(tmp_path / "truth.txt")],
+                            capture_output=True, text=True, check=True)
+    found = re.search(r"ATE RMSE ([\d.]+) cm", result.stdout)
+    split = re.search(r"per-frame noise ([\d.]+) cm \(second difference RMS ([\d.]+) cm, "
+                      r"ground truth's ([\d.]+) cm\); averaged over 9 frames: ATE ([\d.]+) cm",
+                      result.stdout)
+    assert found and split, result.stdout
+    noise, jitter, truth_jitter, slow = (float(v) for v in split.groups())
+    return float(found.group(1)), noise, jitter, truth_jitter, slow
+
+
+def test_splits_per_frame_noise_from_slow_error(tmp_path):
+    write_run(tmp_path)
+    ate, noise, jitter, truth_jitter, slow = run_script(tmp_path)
+    # White noise of sigma per axis: a 3-D norm of sigma * sqrt(3), so about 0.69 cm here.
+    expected_noise_cm = 100 * NOISE_M * math.sqrt(3)
+    assert abs(noise - expected_noise_cm) < 0.08 * expected_noise_cm
+    assert abs(jitter - math.sqrt(6) * expected_noise_cm) < 0.1 * math.sqrt(6) * expected_noise_cm
+    assert truth_jitter < 0.05
+    # The sway's RMS is SWAY_M / sqrt(2), 0.71 cm; averaging 9 frames leaves a third of the noise.
+    sway_cm = 100 * SWAY_M / math.sqrt(2)
+    assert ate > 0.9
+    assert abs(slow - sway_cm) < 0.12
+
+
+def test_skipped_frames_are_not_read_as_noise(tmp_path):
+    # A brisk walk: across a skipped frame the camera moves 4 cm more than between two frames.
+    write_run(tmp_path, skipped=set(range(20, FRAMES, 25)), speed=1.2)
+    _, noise, jitter, truth_jitter, _ = run_script(tmp_path)
+    expected_noise_cm = 100 * NOISE_M * math.sqrt(3)
+    assert abs(noise - expected_noise_cm) < 0.08 * expected_noise_cm
+    # Neither path's second difference spans a gap.
+    assert abs(jitter - math.sqrt(6) * expected_noise_cm) < 0.1 * math.sqrt(6) * expected_noise_cm
+    assert truth_jitter < 0.05
