@@ -98,8 +98,8 @@ def second_difference_rms(positions, triples):
 
 
 def noise_and_slow_error(matched, window):
-    """(estimate's second-difference RMS, ground truth's, per-frame noise sigma, ATE of the
-    estimate averaged over `window` frames), all in metres. `matched` holds (t, aligned estimate,
+    """(estimate's second-difference RMS, ground truth's, per-frame noise as a 3-D RMS like the
+    ATE's, ATE of the estimate averaged over `window` frames), all in metres. `matched` holds (t, aligned estimate,
     ground truth) per frame, in time order."""
     stamps = [t for t, _, _ in matched]
     estimate = [p for _, p, _ in matched]
