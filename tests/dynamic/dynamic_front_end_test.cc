@@ -1,7 +1,8 @@
 // The whole stage on rendered frames with ground-truth masks (sequential, as System runs it):
 // small share removes every person's features, a large share keeps a standing person's, map
 // points on a person who starts moving are culled, the feature target rises after a crowded
-// frame, and the debug output is written.
+// frame, and the debug output is written. Without a segmenter, a blurred frame carries the
+// regions found before it and is flagged as unchecked.
 #include "drvslam/dynamic/dynamic_front_end.h"
 
 #include <gtest/gtest.h>
@@ -263,6 +264,39 @@ TEST_F(DynamicFrontEndTest, WithoutASegmenterMovingThingsAreFoundByGeometry) {
   }
   EXPECT_EQ(stage.Stats().segmenter, "none");
   EXPECT_FALSE(stage.Stats().segmentation.has_value());
+}
+
+TEST_F(DynamicFrontEndTest, WithoutASegmenterABlurredFrameCarriesItsMoversAndIsUnchecked) {
+  // Geometry alone finds the walking "person" in frames 1-3; frame 4 is blurred, so its own
+  // evidence is not believed: the region is carried onto it, and the frame is flagged as one
+  // whose movers nothing could look for (no keyframe should be made of it). With a segmenter
+  // the masks say where the movers are, and no frame is flagged.
+  Sequence sequence = Render(5, false, nullptr, [](int f) { return -0.05 * f; });
+  cv::GaussianBlur(sequence.bgr[4], sequence.bgr[4], cv::Size(), 3.0);
+  for (const bool with_segmenter : {false, true}) {
+    DynamicFrontEndConfig config;
+    config.sequential = true;
+    if (with_segmenter) config.segmenter = std::make_shared<ScriptedSegmenter>(sequence.masks);
+    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    for (int f = 0; f < 5; ++f) {
+      stage.BeginFrame(0.033 * f, sequence.bgr[f]);
+      const Frame full = Extract(sequence, f);
+      const Frame kept = stage.Filter(Frame(full), sequence.bgr[f], sequence.images[f].depth);
+      const DynamicFrameReport& report = stage.LastReport();
+      if (f < 4) {
+        EXPECT_FALSE(report.sharpness.blurred) << "frame " << f;
+        EXPECT_FALSE(stage.MoversUnchecked()) << "frame " << f;
+        continue;
+      }
+      EXPECT_TRUE(report.sharpness.blurred);
+      EXPECT_EQ(stage.MoversUnchecked(), !with_segmenter);
+      if (with_segmenter) continue;
+      EXPECT_EQ(report.unlabelled_evidence.verdict, UnlabelledVerdict::kBlurred);
+      EXPECT_GT(report.unlabelled_carried, 0);
+      const int before = CountOn(full, sequence.images[f].labels, 3);
+      EXPECT_LE(CountOn(kept, sequence.images[f].labels, 3), before / 3);
+    }
+  }
 }
 
 TEST_F(DynamicFrontEndTest, NoFeaturesAreExtractedOnObjectsBelievedMoving) {

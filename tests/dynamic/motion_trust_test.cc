@@ -229,6 +229,30 @@ TEST(MotionPersistenceTest, RegionsCarriedThroughADistrustedFrameStayConfirmed) 
             std::vector<int>{1});
 }
 
+TEST(MotionPersistenceTest, RegionsAddedToALooseFrameJoinItsOwn) {
+  const cv::Size image(320, 240);
+  MotionPersistence persistence;
+  // A loose frame found a new region on the left (streak 1) and carried a confirmed one on the
+  // right through it.
+  persistence.Update({Region({20, 90, 30, 30}, {0, 1, 2, 3, 4, 5})}, TracksMovingRight(25), image);
+  persistence.Add({Region({200, 90, 30, 30}, {})}, image, 2);
+  // The next frame continues both: the carried one is confirmed (2 + 1), the new one counts on
+  // (1 + 1); without Add the carried one would start over (1).
+  std::vector<FlowTrack> tracks = TracksMovingRight(205);
+  const std::vector<FlowTrack> left = TracksMovingRight(30);
+  tracks.insert(tracks.end(), left.begin(), left.end());
+  EXPECT_EQ(persistence.Update({Region({205, 90, 30, 30}, {0, 1, 2, 3, 4, 5}),
+                                Region({25, 90, 30, 30}, {6, 7, 8, 9, 10, 11})},
+                               tracks, image),
+            (std::vector<int>{3, 2}));
+  // Adding to a memory of another size starts a new one from the added regions alone.
+  const cv::Size small(160, 120);
+  persistence.Add({Region({10, 95, 30, 20}, {})}, small, 2);
+  EXPECT_EQ(persistence.Update({Region({15, 95, 30, 20}, {0, 1, 2, 3, 4, 5})},
+                               TracksMovingRight(17), small),
+            std::vector<int>{3});
+}
+
 TEST(FeatureFloorTest, KeepsBackTheWeakestRemovalsFirst) {
   const std::vector<RemovalCandidate> removed = {
       {0, RemovalTier::kMovingObject, 0.9, 50.0f}, {1, RemovalTier::kUnlabelled, 12.0, 10.0f},

@@ -1,7 +1,7 @@
 // Carrying regions of unlabelled motion through a blurred frame: each region moves with the
 // tracks that start on it (their median displacement when they are few or disagree, a fitted
 // similarity when most agree on one), is cropped at the image border, and is dropped when too
-// few tracks start on it.
+// few tracks start on it. A carried region that this frame found again is not kept twice.
 #include "drvslam/dynamic/region_carrier.h"
 
 #include <gtest/gtest.h>
@@ -79,6 +79,28 @@ TEST(RegionCarrierTest, ARegionLeavingTheImageIsCroppedThenDropped) {
   const std::vector<FlowTrack> gone = {Track(6, 52, -40, 0), Track(8, 60, -40, 0),
                                        Track(9, 65, -40, 0)};
   EXPECT_TRUE(CarryRegions({Region(5, 50)}, gone, {320, 240}).empty());
+}
+
+TEST(RegionCarrierTest, CarriedRegionsMostlyFoundAgainAreDropped) {
+  const cv::Size image(320, 240);
+  // Each Region covers 10x20 = 200 pixels (its left half).
+  const std::vector<MovingRegion> carried = {Region(50, 50), Region(150, 50), Region(250, 50)};
+  // Found: all of the first region's mask, a quarter of the second's (its top 5 rows), none of
+  // the third's.
+  MovingRegion first = Region(50, 50);
+  MovingRegion quarter;
+  quarter.box = cv::Rect(150, 50, 10, 5);
+  quarter.mask = cv::Mat(5, 10, CV_8UC1, cv::Scalar(255));
+  const std::vector<MovingRegion> kept = WithoutCovered(carried, {first, quarter}, image);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].box, cv::Rect(150, 50, 20, 20));
+  EXPECT_EQ(kept[1].box, cv::Rect(250, 50, 20, 20));
+  // The second region half found (top 10 rows): it goes too.
+  quarter.box = cv::Rect(150, 50, 10, 10);
+  quarter.mask = cv::Mat(10, 10, CV_8UC1, cv::Scalar(255));
+  EXPECT_EQ(WithoutCovered(carried, {quarter}, image).size(), 2u);
+  // Nothing found: every carried region stays.
+  EXPECT_EQ(WithoutCovered(carried, {}, image).size(), 3u);
 }
 
 }  // namespace

@@ -509,27 +509,47 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
         ++report_.unlabelled_pending;
       }
     }
-    carried_frames_ = 0;
+    const bool confirmed_own = !confirmed.empty();
+    if (loose) {
+      // A loose fit cannot confirm a mover at once, so neither can it show that one it does
+      // not find has stopped: in a crowd, loose frames fell between blurred ones, and each
+      // dropped the regions carried through the blur (real Bonn crowd dev half, geometry
+      // alone: frames 312-332 removed nothing). The last regions go on being carried.
+      CarryThroughDistrustedFrame(motion.tracks, size, &confirmed);
+    }
+    if (!loose || confirmed_own) carried_frames_ = 0;
   } else {
     // A frame whose evidence is not believed cannot find movers, nor show that the ones found
     // just before stopped: they are carried along the flow (region_carrier.h) through such a
     // stretch, blurred, misfitting or judged a camera failure alike, and stay confirmed for
     // the next believed frame.
-    if (carried_frames_ < o.unlabelled_carry_frames) {
-      confirmed = CarryRegions(last_confirmed_, motion.tracks, size);
-      report_.unlabelled_carried = static_cast<int>(confirmed.size());
-      persistence_.Carry(confirmed, size, o.unlabelled_frames);
-      ++carried_frames_;
-    } else {
-      confirmed.clear();
-      persistence_.Forget();
-    }
+    persistence_.Forget();
+    CarryThroughDistrustedFrame(motion.tracks, size, &confirmed);
   }
   last_confirmed_ = confirmed;
   evidence.tracks.clear();
   report_.unlabelled_evidence = std::move(evidence);
   report_.unlabelled_weighed = true;
   return confirmed;
+}
+
+void DynamicFrontEnd::CarryThroughDistrustedFrame(const std::vector<FlowTrack>& tracks,
+                                                  const cv::Size& size,
+                                                  std::vector<MovingRegion>* confirmed) {
+  if (carried_frames_ >= config_.options.unlabelled_carry_frames) return;
+  std::vector<MovingRegion> carried =
+      WithoutCovered(CarryRegions(last_confirmed_, tracks, size), *confirmed, size);
+  if (carried.empty()) return;
+  report_.unlabelled_carried = static_cast<int>(carried.size());
+  persistence_.Add(carried, size, config_.options.unlabelled_frames);
+  confirmed->insert(confirmed->end(), std::make_move_iterator(carried.begin()),
+                    std::make_move_iterator(carried.end()));
+  ++carried_frames_;
+}
+
+bool DynamicFrontEnd::MoversUnchecked() const {
+  return config_.segmenter == nullptr && report_.unlabelled_weighed &&
+         report_.unlabelled_evidence.verdict != UnlabelledVerdict::kTrusted;
 }
 
 void DynamicFrontEnd::AfterTracking(const Frame& tracked) {

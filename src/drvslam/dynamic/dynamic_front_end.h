@@ -193,6 +193,11 @@ class DynamicFrontEnd {
   void AfterTracking(const Frame& tracked);
 
   const DynamicFrameReport& LastReport() const { return report_; }
+  // Without a segmenter, the last filtered frame's unlabelled-motion evidence was weighed and not
+  // believed (blurred, misfit, camera failure): only regions carried from earlier frames say
+  // where its movers are. In a crowd, keyframes from such frames mapped the people, and tracking
+  // then followed them (docs/dynamic-handling.md#frames-without-believed-evidence).
+  bool MoversUnchecked() const;
   DynamicStats Stats() const;
 
  private:
@@ -287,6 +292,11 @@ class DynamicFrontEnd {
                          const std::vector<cv::KeyPoint>& removed) const;
   void WriteObjectRows();
   void WriteFrameRow();
+  // Appends last frame's confirmed regions, carried along `tracks` into an image of `size`,
+  // to `confirmed` (less those its own regions already cover), while fewer than
+  // Dynamic.unlabelledCarryFrames frames in a row have been carried.
+  void CarryThroughDistrustedFrame(const std::vector<FlowTrack>& tracks, const cv::Size& size,
+                                   std::vector<MovingRegion>* confirmed);
   // Unlabelled motion that holds up (motion_trust.h, motion_persistence.h); fills the report's
   // unlabelled fields. focal_px: the camera's, for the regions' metric reach.
   std::vector<MovingRegion> FindTrustedUnlabelledMotion(const MotionConsistencyResult& motion,

@@ -44,9 +44,16 @@ void MotionPersistence::Carry(const std::vector<MovingRegion>& carried, const cv
   Remember(carried, std::vector<int>(carried.size(), std::clamp(streak, 1, 255)), image);
 }
 
+void MotionPersistence::Add(const std::vector<MovingRegion>& carried, const cv::Size& image,
+                            int streak) {
+  Remember(carried, std::vector<int>(carried.size(), std::clamp(streak, 1, 255)), image, true);
+}
+
 void MotionPersistence::Remember(const std::vector<MovingRegion>& regions,
-                                 const std::vector<int>& streaks, const cv::Size& image) {
-  cv::Mat next = cv::Mat::zeros(image, CV_8UC1);
+                                 const std::vector<int>& streaks, const cv::Size& image,
+                                 bool keep_previous) {
+  cv::Mat next = streaks_;  // shares the pixels: painted in place
+  if (!keep_previous || next.size() != image) next = cv::Mat::zeros(image, CV_8UC1);
   const cv::Rect whole(0, 0, image.width, image.height);
   for (std::size_t r = 0; r < regions.size(); ++r) {
     const MovingRegion& region = regions[r];

@@ -27,13 +27,17 @@ class MotionPersistence {
   // frames (the count that confirms a region), so the next believed frame's regions that
   // overlap them are confirmed at once rather than starting over.
   void Carry(const std::vector<MovingRegion>& carried, const cv::Size& image, int streak);
+  // A loosely fitting frame, whose own regions Update remembered, also carried regions through
+  // it: they join those regions, with `streak` frames as Carry gives them.
+  void Add(const std::vector<MovingRegion>& carried, const cv::Size& image, int streak);
   // A frame whose motion evidence is not believed and that carries nothing breaks every chain.
   void Forget();
 
  private:
-  // The regions painted with their streaks into a new previous-frame image.
+  // The regions painted with their streaks into a new previous-frame image, or, with
+  // `keep_previous`, into the current one (where a pixel has two streaks, the longer counts).
   void Remember(const std::vector<MovingRegion>& regions, const std::vector<int>& streaks,
-                const cv::Size& image);
+                const cv::Size& image, bool keep_previous = false);
 
   cv::Mat streaks_;  // CV_8UC1 of the previous frame: consecutive frames seen moving, 0 = none
 };

@@ -31,4 +31,23 @@ std::vector<MovingRegion> CarryRegions(const std::vector<MovingRegion>& regions,
   return carried;
 }
 
+std::vector<MovingRegion> WithoutCovered(std::vector<MovingRegion> carried,
+                                         const std::vector<MovingRegion>& found,
+                                         const cv::Size& size) {
+  if (found.empty() || carried.empty()) return carried;
+  cv::Mat covered = cv::Mat::zeros(size, CV_8UC1);
+  PaintRegions(found, covered);
+  const cv::Rect whole(0, 0, size.width, size.height);
+  std::vector<MovingRegion> kept;
+  for (MovingRegion& region : carried) {
+    const cv::Rect box = region.box & whole;
+    if (box.empty() || region.mask.size() != region.box.size()) continue;
+    const cv::Mat mask = region.mask(cv::Rect(box.tl() - region.box.tl(), box.size()));
+    cv::Mat overlap;
+    cv::bitwise_and(mask, covered(box), overlap);
+    if (2 * cv::countNonZero(overlap) < cv::countNonZero(mask)) kept.push_back(std::move(region));
+  }
+  return kept;
+}
+
 }  // namespace drvslam

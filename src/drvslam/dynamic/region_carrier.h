@@ -27,4 +27,10 @@ std::vector<MovingRegion> CarryRegions(const std::vector<MovingRegion>& regions,
                                        const std::vector<FlowTrack>& tracks, const cv::Size& size,
                                        const ObjectMaskCarrier& carrier = ObjectMaskCarrier());
 
+// The regions of `carried` less than half of which `found` (regions of the same image of `size`)
+// already covers: a carried region that this frame's evidence found again is not kept twice.
+std::vector<MovingRegion> WithoutCovered(std::vector<MovingRegion> carried,
+                                         const std::vector<MovingRegion>& found,
+                                         const cv::Size& size);
+
 }  // namespace drvslam

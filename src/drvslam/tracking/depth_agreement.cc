@@ -14,6 +14,7 @@ DepthAgreement MeasureDepthAgreement(const Frame& frame, const cv::Mat& depth,
   std::vector<cv::Point3d> in_camera;
   for (const auto& point : points) {
     if (!point || point->IsBad()) continue;
+    if (point->Visible() > 0 && point->FoundRatio() < options.min_found_ratio) continue;
     if (!frame.ProjectIfVisible(*point, options.min_view_cos)) continue;
     const Eigen::Vector3d p = frame.Pose() * point->Position();
     in_camera.emplace_back(p.x(), p.y(), p.z());

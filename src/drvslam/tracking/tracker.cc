@@ -305,6 +305,7 @@ int Tracker::OptimizeCurrentPose() {
 }
 
 bool Tracker::NeedNewKeyFrame() const {
+  if (keyframe_vetoed_) return false;
   // A relocalized camera adds no keyframe for a while unless the map is small: the pose is
   // confirmed by the next frames first (ORB-SLAM2's rule).
   if (RecentlyRelocalized() &&

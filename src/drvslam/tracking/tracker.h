@@ -69,6 +69,9 @@ class Tracker {
   // Localization only: frames are tracked against the map as it is; no keyframe (so no map
   // point) is ever added.
   void SetLocalizationOnly(bool localization_only) { localization_only_ = localization_only; }
+  // The next frame tracked must not become a keyframe: its features may lie on movers that
+  // nothing could find (DynamicFrontEnd::MoversUnchecked). It is still tracked.
+  void VetoKeyFrame(bool veto) { keyframe_vetoed_ = veto; }
   // A live camera (--realtime): while local mapping is busy, keyframes are added only until
   // Tracking.realtimeQueuedKeyframes wait, instead of ORB-SLAM2's 3.
   void SetLiveCamera(bool live) {
@@ -125,6 +128,7 @@ class Tracker {
 
   TrackingState state_ = TrackingState::kNotInitialized;
   bool localization_only_ = false;
+  bool keyframe_vetoed_ = false;
   std::optional<Frame> current_;
   std::optional<Frame> last_frame_;
   std::optional<SE3> velocity_;  // T_current_last of the last tracked step
