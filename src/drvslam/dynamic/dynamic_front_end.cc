@@ -515,7 +515,7 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
       // not find has stopped: in a crowd, loose frames fell between blurred ones, and each
       // dropped the regions carried through the blur (real Bonn crowd dev half, geometry
       // alone: frames 312-332 removed nothing). The last regions go on being carried.
-      CarryThroughDistrustedFrame(motion.tracks, size, &confirmed);
+      CarryLastRegions(motion.tracks, size, &confirmed);
     }
     if (!loose || confirmed_own) carried_frames_ = 0;
   } else {
@@ -524,7 +524,7 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
     // stretch, blurred, misfitting or judged a camera failure alike, and stay confirmed for
     // the next believed frame.
     persistence_.Forget();
-    CarryThroughDistrustedFrame(motion.tracks, size, &confirmed);
+    CarryLastRegions(motion.tracks, size, &confirmed);
   }
   last_confirmed_ = confirmed;
   evidence.tracks.clear();
@@ -533,9 +533,8 @@ std::vector<MovingRegion> DynamicFrontEnd::FindTrustedUnlabelledMotion(
   return confirmed;
 }
 
-void DynamicFrontEnd::CarryThroughDistrustedFrame(const std::vector<FlowTrack>& tracks,
-                                                  const cv::Size& size,
-                                                  std::vector<MovingRegion>* confirmed) {
+void DynamicFrontEnd::CarryLastRegions(const std::vector<FlowTrack>& tracks, const cv::Size& size,
+                                       std::vector<MovingRegion>* confirmed) {
   if (carried_frames_ >= config_.options.unlabelled_carry_frames) return;
   std::vector<MovingRegion> carried =
       WithoutCovered(CarryRegions(last_confirmed_, tracks, size), *confirmed, size);

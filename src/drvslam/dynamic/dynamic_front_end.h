@@ -295,8 +295,8 @@ class DynamicFrontEnd {
   // Appends last frame's confirmed regions, carried along `tracks` into an image of `size`,
   // to `confirmed` (less those its own regions already cover), while fewer than
   // Dynamic.unlabelledCarryFrames frames in a row have been carried.
-  void CarryThroughDistrustedFrame(const std::vector<FlowTrack>& tracks, const cv::Size& size,
-                                   std::vector<MovingRegion>* confirmed);
+  void CarryLastRegions(const std::vector<FlowTrack>& tracks, const cv::Size& size,
+                        std::vector<MovingRegion>* confirmed);
   // Unlabelled motion that holds up (motion_trust.h, motion_persistence.h); fills the report's
   // unlabelled fields. focal_px: the camera's, for the regions' metric reach.
   std::vector<MovingRegion> FindTrustedUnlabelledMotion(const MotionConsistencyResult& motion,

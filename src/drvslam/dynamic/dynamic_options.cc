@@ -136,8 +136,8 @@ const OptionTable<DynamicOptions>& DynamicOptionTable() {
              "In a loosely fitting frame a region must move this many frames in a row.")
         .Int("unlabelledCarryFrames", &D::unlabelled_carry_frames,
              Bounds::In(0, 10000).Note("0 = off"),
-             "Distrusted frames in a row (blurred, misfit, camera failure) through which the "
-             "last removed regions are carried.")
+             "Frames in a row whose evidence is distrusted (blurred, misfit, camera failure) "
+             "or loosely fitting, through which the last removed regions are carried.")
         .Int("minKeptFeatures", &D::min_kept_features, Bounds::In(0, 100000).Note("0 = off"),
              "Removal never leaves fewer features (weakest evidence kept back first).")
         // Map points and extraction.

@@ -145,9 +145,9 @@ struct DynamicOptions {
   // fitting frame's regions go at once (1 = always at once).
   int unlabelled_frames = 2;
   // Dynamic.unlabelledCarryFrames: through at most this many frames in a row whose evidence is
-  // not believed (blurred, misfitting, or judged a camera failure), the regions removed just
-  // before are carried along the flow and still removed, and stay confirmed for the next
-  // believed frame (region_carrier.h; 0 = off). 30: a second at 30 Hz, about as long as a
+  // not believed (blurred, misfitting, or judged a camera failure) or fits loosely, the regions
+  // removed just before are carried along the flow and still removed, and stay confirmed for the
+  // next believed frame (region_carrier.h; 0 = off). 30: a second at 30 Hz, about as long as a
   // quick pan blurs.
   int unlabelled_carry_frames = 30;
 

@@ -1,5 +1,6 @@
 // Carrying confirmed regions of unlabelled motion through frames whose own evidence is not
-// believed (blurred, misfit or camera-failure frames: motion_trust.h). A camera pan among walking
+// believed (blurred, misfit or camera-failure frames: motion_trust.h) or fits too loosely to
+// confirm a region at once. A camera pan among walking
 // people blurs a second of frames; with no regions in them every mover's features went back into
 // the map, and on the real Bonn crowd dev half tracking was then lost for the rest of the sequence
 // in 3 of 5 realtime runs (geometry alone). The mover is still there, and the flow tracks still say
