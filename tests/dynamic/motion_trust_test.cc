@@ -212,18 +212,22 @@ TEST(MotionPersistenceTest, RegionsCarriedThroughADistrustedFrameStayConfirmed) 
   persistence.Update({Region({95, 90, 30, 30}, {0, 1, 2, 3, 4, 5})}, TracksMovingRight(100), image);
   // Two frames without believed evidence: the region is carried (no members) with the streak
   // that confirms a region (2), then found again where the carrying left it.
-  persistence.Carry({Region({100, 90, 30, 30}, {})}, image, 2);
-  persistence.Carry({Region({105, 90, 30, 30}, {})}, image, 2);
+  persistence.Forget();
+  persistence.Add({Region({100, 90, 30, 30}, {})}, image, 2);
+  persistence.Forget();
+  persistence.Add({Region({105, 90, 30, 30}, {})}, image, 2);
   EXPECT_EQ(persistence.Update({Region({110, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
                                TracksMovingRight(115), image),
             std::vector<int>{3});
   // Points whose previous positions miss the carried region start over.
-  persistence.Carry({Region({110, 90, 30, 30}, {})}, image, 2);
+  persistence.Forget();
+  persistence.Add({Region({110, 90, 30, 30}, {})}, image, 2);
   EXPECT_EQ(persistence.Update({Region({200, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
                                TracksMovingRight(215), image),
             std::vector<int>{1});
-  // Carrying nothing breaks that new chain, as Forget does (without it: 2).
-  persistence.Carry({}, image, 2);
+  // A distrusted frame that carries nothing breaks that new chain (without Forget: 2).
+  persistence.Forget();
+  persistence.Add({}, image, 2);
   EXPECT_EQ(persistence.Update({Region({205, 90, 30, 30}, {0, 1, 2, 3, 4, 5})},
                                TracksMovingRight(220), image),
             std::vector<int>{1});

@@ -39,11 +39,6 @@ std::vector<int> MotionPersistence::Update(const std::vector<MovingRegion>& regi
   return streaks;
 }
 
-void MotionPersistence::Carry(const std::vector<MovingRegion>& carried, const cv::Size& image,
-                              int streak) {
-  Remember(carried, std::vector<int>(carried.size(), std::clamp(streak, 1, 255)), image);
-}
-
 void MotionPersistence::Add(const std::vector<MovingRegion>& carried, const cv::Size& image,
                             int streak) {
   Remember(carried, std::vector<int>(carried.size(), std::clamp(streak, 1, 255)), image, true);

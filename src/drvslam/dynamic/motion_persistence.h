@@ -22,15 +22,13 @@ class MotionPersistence {
   // a region names a track that does not exist.
   std::vector<int> Update(const std::vector<MovingRegion>& regions,
                           const std::vector<FlowTrack>& tracks, const cv::Size& image);
-  // A frame whose motion evidence is not believed, and whose confirmed regions were carried
-  // through it (region_carrier.h): the carried regions continue their chains with `streak`
-  // frames (the count that confirms a region), so the next believed frame's regions that
-  // overlap them are confirmed at once rather than starting over.
-  void Carry(const std::vector<MovingRegion>& carried, const cv::Size& image, int streak);
-  // A loosely fitting frame, whose own regions Update remembered, also carried regions through
-  // it: they join those regions, with `streak` frames as Carry gives them.
+  // Regions carried through a frame (region_carrier.h) join what the frame remembers (its own
+  // regions after Update, nothing after Forget) with `streak` frames, the count that confirms
+  // a region: the next believed frame's regions that overlap them are confirmed at once rather
+  // than starting over.
   void Add(const std::vector<MovingRegion>& carried, const cv::Size& image, int streak);
-  // A frame whose motion evidence is not believed and that carries nothing breaks every chain.
+  // A frame whose motion evidence is not believed breaks every chain (what it carries is then
+  // Added).
   void Forget();
 
  private:
