@@ -1,13 +1,13 @@
 // Carrying confirmed regions of unlabelled motion through frames whose own evidence is not
 // believed (blurred, misfit or camera-failure frames: motion_trust.h) or fits too loosely to
-// confirm a region at once. A camera pan among walking
-// people blurs a second of frames; with no regions in them every mover's features went back into
-// the map, and on the real Bonn crowd dev half tracking was then lost for the rest of the sequence
-// in 3 of 5 realtime runs (geometry alone). The mover is still there, and the flow tracks still say
-// where it went. Blur spoils the residual tests far more than the displacement, which needs no
-// scene model. The regions move as the masks of detected objects do when segmentation lags
-// (ObjectMaskCarrier): by a similarity fitted to the tracks that start on them, or their median
-// displacement when the tracks disagree.
+// confirm a region at once. A camera pan among walking people blurs a second of frames; with no
+// regions in them every mover's features went back into the map, and on the real Bonn crowd dev
+// half tracking was then lost for the rest of the sequence in 3 of 5 realtime runs (geometry
+// alone). The mover is still there, and the flow tracks still say where it went. Blur spoils the
+// residual tests far more than the displacement, which needs no scene model. The regions move as
+// the masks of detected objects do when segmentation lags (ObjectMaskCarrier): by a similarity
+// fitted to the tracks that start on them, or their median displacement when the tracks
+// disagree.
 #pragma once
 
 #include <opencv2/core.hpp>
