@@ -2,7 +2,8 @@
 // small share removes every person's features, a large share keeps a standing person's, map
 // points on a person who starts moving are culled, the feature target rises after a crowded
 // frame, and the debug output is written. Without a segmenter, a blurred frame carries the
-// regions found before it and is flagged as unchecked. Realtime waits and the flow helper
+// regions found before it and is flagged as unchecked, and regions reach further around a
+// walker than beside a segmenter. Realtime waits and the flow helper
 // thread are in dynamic_front_end_realtime_test.cc.
 #include "drvslam/dynamic/dynamic_front_end.h"
 
@@ -165,6 +166,52 @@ TEST_F(DynamicFrontEndTest, WithoutASegmenterMovingThingsAreFoundByGeometry) {
   }
   EXPECT_EQ(stage.Stats().segmenter, "none");
   EXPECT_FALSE(stage.Stats().segmentation.has_value());
+}
+
+// Without a segmenter the regions reach Dynamic.regionReachWithoutSegmenter metres around their
+// moving points (a near walker is covered, not just sampled); beside a segmenter
+// Dynamic.regionReach applies instead, and neither value touches the other's case.
+TEST_F(DynamicFrontEndTest, TheRegionReachDependsOnWhetherASegmenterRuns) {
+  // The near person (1.2 m, about 220 px wide) walks; the far one stands.
+  const Sequence sequence = Render(
+      5, true, [](int f) { return 0.04 * f; }, [](int) { return 0.0; });
+  // A segmenter that names only the far person leaves the near one to geometry.
+  std::vector<Segmentation> far_only = sequence.masks;
+  for (int f = 0; f < 5; ++f) far_only[f].instances = test::InstancesOf(sequence.images[f], {2});
+  // Features kept on the near person over frames 1-4.
+  const auto kept_on_near = [&](bool with_segmenter, double reach, double reach_alone) {
+    DynamicFrontEndConfig config;
+    config.sequential = true;
+    if (with_segmenter) config.segmenter = std::make_shared<ScriptedSegmenter>(far_only);
+    config.options.region_reach = reach;
+    config.options.region_reach_without_segmenter = reach_alone;
+    Map map;
+    DynamicFrontEnd stage(config, 1000, map, nullptr);
+    std::vector<int> kept_per_frame;
+    for (int f = 0; f < 5; ++f) {
+      stage.BeginFrame(0.033 * f, sequence.bgr[f]);
+      const Frame kept =
+          stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+      if (f > 0) kept_per_frame.push_back(CountOn(kept, sequence.images[f].labels, 4));
+    }
+    return kept_per_frame;
+  };
+  const std::vector<int> pixels_only = kept_on_near(false, 0.0, 0.0);
+  const std::vector<int> reached = kept_on_near(false, 0.0, 0.3);
+  int sum_pixels_only = 0, sum_reached = 0;
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_LE(reached[k], pixels_only[k]) << "frame " << k + 1;
+    sum_pixels_only += pixels_only[k];
+    sum_reached += reached[k];
+  }
+  EXPECT_LE(sum_reached * 2, sum_pixels_only) << sum_reached << " of " << sum_pixels_only;
+  // Dynamic.regionReach is not the one used without a segmenter ...
+  EXPECT_EQ(kept_on_near(false, 0.3, 0.0), pixels_only);
+  // ... and beside one it is, while
+  // Dynamic.regionReachWithoutSegmenter is not.
+  const std::vector<int> beside_pixels_only = kept_on_near(true, 0.0, 0.0);
+  EXPECT_NE(kept_on_near(true, 0.3, 0.0), beside_pixels_only);
+  EXPECT_EQ(kept_on_near(true, 0.0, 0.3), beside_pixels_only);
 }
 
 TEST_F(DynamicFrontEndTest, WithoutASegmenterABlurredFrameCarriesItsMoversAndIsUnchecked) {

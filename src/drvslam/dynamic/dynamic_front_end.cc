@@ -131,6 +131,8 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
     stats_.segmenter = config_.segmenter->Name();
   } else {
     stats_.segmenter = "none";
+    // Without masks, unlabelled regions are the only cover the people get.
+    config_.options.region_reach = config_.options.region_reach_without_segmenter;
   }
   stats_.realtime = config_.realtime;
   if (config_.options.flow_thread && !config_.sequential) {

@@ -119,7 +119,11 @@ const OptionTable<DynamicOptions>& DynamicOptionTable() {
         .Real("regionMargin", &D::region_margin, Bounds::AtLeast(0).Note("pixels"),
               "Region growth beyond its points.")
         .Real("regionReach", &D::region_reach, Bounds::AtLeast(0).Note("metres; 0 = off"),
-              "Region growth also this far in metres around the points, in the image and in depth.")
+              "Region growth also this far in metres around the points, in the image and in depth "
+              "(beside a segmenter).")
+        .Real("regionReachWithoutSegmenter", &D::region_reach_without_segmenter,
+              Bounds::AtLeast(0).Note("metres; 0 = off"),
+              "Dynamic.regionReach when no segmenter runs (geometry alone finds the movers).")
         // Trust in unlabelled motion.
         .Real("blurRatio", &D::blur_ratio, Bounds::In(0, 1).Note("0 = off"),
               "Sharpness below this share of the window's sharpest: blurred, no unlabelled "

@@ -115,10 +115,13 @@ struct DynamicOptions {
   // Dynamic.regionReach: the growth also reaches this far in metres at the points' depth
   // (fx * reach / z pixels, when larger), and no further than this from their depth: a mover
   // near the camera is large in the image, and its moving points are a sparse sample of it
-  // (0 = pixels only, any depth). Off by default: 0.2 fixed a walker passing close to the
-  // camera in a synthetic sequence (geometry alone, 4.2 -> 0.4 cm) but did not help on the
-  // real Bonn crowd dev half (docs/dynamic-handling.md has the figures).
+  // (0 = pixels only, any depth). This one applies beside a segmenter, whose masks already
+  // cover the people: off, as growth there takes static features around them.
   double region_reach = 0.0;
+  // Dynamic.regionReachWithoutSegmenter: the same reach when no segmenter runs. Then geometry
+  // alone finds the people, and a region must cover the body its sparse moving points sample
+  // (about a person's half width). docs/dynamic-handling.md has the figures for both.
+  double region_reach_without_segmenter = 0.3;
 
   // When unlabelled motion is believed (a real camera's blur, rolling shutter, misregistered
   // depth and calibration error make a static scene look moving; see motion_trust.h). Each

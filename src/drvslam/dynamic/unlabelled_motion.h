@@ -30,8 +30,9 @@ struct MovingRegion {
 // tracks: MotionConsistency's output. labelled: empty or CV_8UC1 of the depth's size (nonzero =
 // already handled by segmentation; points there are skipped). depth: CV_32FC1 metres (0 = no
 // depth); points without depth are skipped. focal_px: the camera's focal length in pixels, for
-// Dynamic.regionReach (0: the pixel margin only). Throws drvslam::Error on inconsistent
-// sizes/types.
+// options.region_reach (0: the pixel margin only; DynamicFrontEnd puts
+// Dynamic.regionReachWithoutSegmenter there when no segmenter runs). Throws drvslam::Error on
+// inconsistent sizes/types.
 std::vector<MovingRegion> FindUnlabelledMotion(const std::vector<FlowTrack>& tracks,
                                                const cv::Mat& labelled, const cv::Mat& depth,
                                                const DynamicOptions& options,
