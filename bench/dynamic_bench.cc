@@ -3,7 +3,8 @@
 // homography fitted outside the people's masks, epipolar test, and the reprojection test with
 // the previous frame's depth), and the whole stage (motion consistency + object IDs, motion
 // states, removal and feature filtering) as System runs it, on consecutive frames only, with the
-// stage split reported as counters. Frames and ground-truth masks come from a short synthetic
+// stage split reported as counters, and the stage without a segmenter (geometry alone) with and
+// without the regions' metric reach. Frames and ground-truth masks come from a short synthetic
 // walking sequence generated at start-up.
 // Single-threaded OpenCV (cv::setNumThreads(1)): per-core cost.
 #include <benchmark/benchmark.h>
@@ -172,17 +173,14 @@ BENCHMARK(BM_MotionConsistency)
     ->Args({500, 9, 2, 50})
     ->Unit(benchmark::kMillisecond);
 
-void BM_DynamicStage(benchmark::State& state) {
+// Runs the stage over the sequence played forth and back (every step is between neighbouring
+// frames; stamps keep rising), with the stage split and features removed per frame as counters.
+void RunStage(benchmark::State& state, const Data& d, DynamicFrontEndConfig config) {
   cv::setNumThreads(1);
-  const Data& d = Sequence();
-  DynamicFrontEndConfig config;
-  config.segmenter = std::make_shared<ReplaySegmenter>(d.masks, d.class_names);
   config.sequential = true;
-  config.options.unlabelled_motion = state.range(0) != 0;
   Map map;
   StageTimings timings;
   DynamicFrontEnd stage(config, d.settings.orb.n_features, map, &timings);
-  // Played forth and back, so every step is between neighbouring frames; stamps keep rising.
   const double frame_period = d.frames[1].timestamp - d.frames[0].timestamp;
   std::size_t i = 0;
   std::size_t removed = 0;
@@ -201,7 +199,24 @@ void BM_DynamicStage(benchmark::State& state) {
   }
   state.counters["removed_per_frame"] = i > 0 ? static_cast<double>(removed) / i : 0.0;
 }
+
+void BM_DynamicStage(benchmark::State& state) {
+  const Data& d = Sequence();
+  DynamicFrontEndConfig config;
+  config.segmenter = std::make_shared<ReplaySegmenter>(d.masks, d.class_names);
+  config.options.unlabelled_motion = state.range(0) != 0;
+  RunStage(state, d, config);
+}
 BENCHMARK(BM_DynamicStage)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
+// Geometry alone (no segmenter): the unlabelled regions are the only removal; the argument is
+// Dynamic.regionReachWithoutSegmenter in centimetres (0: the pixel margin only).
+void BM_DynamicStageWithoutSegmenter(benchmark::State& state) {
+  DynamicFrontEndConfig config;
+  config.options.region_reach_without_segmenter = state.range(0) / 100.0;
+  RunStage(state, Sequence(), config);
+}
+BENCHMARK(BM_DynamicStageWithoutSegmenter)->Arg(0)->Arg(30)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
