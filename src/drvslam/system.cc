@@ -302,8 +302,9 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
     // Local mapping writes bundle-adjusted poses under this lock, so a frame is tracked
     // against one consistent state of the map.
     std::lock_guard<std::mutex> lock(map.UpdateMutex());
-    // Without a detector, a frame whose motion evidence is not believed says nothing of where
-    // its movers are; tracked, it may be, but mapped, its movers would stay in the map.
+    // A frame that says nothing of where its movers are (without a detector: motion evidence
+    // not believed; at camera rate: the people's masks aged out) is tracked but not mapped, or
+    // its movers would stay in the map.
     tracker.VetoKeyFrame(dynamic && dynamic->MoversUnchecked());
     result = tracker.Track(std::move(frame), depth);
     // Map points matched on still potentially-moving objects are filed, to be culled when the

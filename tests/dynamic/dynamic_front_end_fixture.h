@@ -103,6 +103,17 @@ class DynamicFrontEndTest : public ::testing::Test {
     return false;
   }
 
+  // Begins frame f of a run whose network stalls after frame 0 (GatedSegmenter): frame 0 waits
+  // until its masks are back (a generous hang bound: they come at once), for later frames to
+  // carry.
+  static void BeginGatedFrame(DynamicFrontEnd& stage, const Sequence& sequence, int f) {
+    stage.BeginFrame(0.033 * f, sequence.bgr[f]);
+    if (f != 0) return;
+    for (int wait = 0; wait < 2000 && stage.Stats().segmentation->segmented < 1; ++wait) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+
   static int CountOn(const Frame& frame, const cv::Mat& labels, int label) {
     int count = 0;
     for (const cv::KeyPoint& kp : frame.Features().Keypoints()) {

@@ -549,6 +549,7 @@ void DynamicFrontEnd::CarryLastRegions(const std::vector<FlowTrack>& tracks, con
 }
 
 bool DynamicFrontEnd::MoversUnchecked() const {
+  if (report_.masks_expired) return true;
   return config_.segmenter == nullptr && report_.unlabelled_weighed &&
          report_.unlabelled_evidence.verdict != UnlabelledVerdict::kTrusted;
 }

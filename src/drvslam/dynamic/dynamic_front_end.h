@@ -104,7 +104,10 @@ struct DynamicFrameReport {
   int feature_target = 0;
   bool keyframe_likely = false;  // tracking expected this frame to become a keyframe
   bool own_masks = false;        // the frame's own masks (not carried ones) were used
-  double skip_share = 0.0;       // image share where extraction was skipped (moving objects)
+  // --realtime: the carried masks of potentially-moving objects aged out before the network's
+  // next ones came, so nothing says where those movers are now (MoversUnchecked).
+  bool masks_expired = false;
+  double skip_share = 0.0;  // image share where extraction was skipped (moving objects)
   int features_extracted = 0;
   int removed_on_objects = 0;
   int removed_unlabelled = 0;
@@ -154,7 +157,8 @@ struct DynamicStats {
   std::size_t keyframes_own_masks = 0;
   std::size_t keyframe_waits = 0;
   std::size_t keyframe_waits_fresh = 0;
-  std::string segmenter;  // backend name, or "none"
+  std::size_t frames_masks_expired = 0;  // frames whose movers' masks had aged out
+  std::string segmenter;                 // backend name, or "none"
   bool realtime = false;
   std::optional<AsyncSegmenterStats> segmentation;
   std::optional<SegmentationLatencyStats> latency;
@@ -193,10 +197,12 @@ class DynamicFrontEnd {
   void AfterTracking(const Frame& tracked);
 
   const DynamicFrameReport& LastReport() const { return report_; }
-  // Without a segmenter, the last filtered frame's unlabelled-motion evidence was weighed and not
-  // believed (blurred, misfit, camera failure): only regions carried from earlier frames say
-  // where its movers are. In a crowd, keyframes from such frames mapped the people, and tracking
-  // then followed them (docs/dynamic-handling.md#frames-without-believed-evidence).
+  // Nothing in the last filtered frame says where its movers are: without a segmenter, its
+  // unlabelled-motion evidence was weighed and not believed (blurred, misfit, camera failure);
+  // with one (--realtime), the masks of movers in view aged out before the network's next ones
+  // came, for at most Segmentation.carryFrames frames in a row. In a crowd, keyframes from such
+  // frames mapped the people, and tracking then followed them
+  // (docs/dynamic-handling.md#frames-without-believed-evidence).
   bool MoversUnchecked() const;
   DynamicStats Stats() const;
 
@@ -320,6 +326,8 @@ class DynamicFrontEnd {
   std::deque<std::vector<PointMotion>> track_history_;
   std::optional<std::size_t> carried_from_;
   double carried_from_timestamp_ = 0.0;
+  bool carried_movers_ = false;  // the carried masks' source frame had potentially-moving objects
+  int frames_expired_ = 0;       // consecutive frames whose movers' masks had aged out
   MotionConsistency consistency_;
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;

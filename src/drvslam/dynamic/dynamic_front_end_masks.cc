@@ -5,6 +5,7 @@
 #include "drvslam/core/error.h"
 #include "drvslam/dynamic/dynamic_front_end.h"
 #include "drvslam/dynamic/point_motions.h"
+#include "drvslam/semantic/class_table.h"
 
 namespace drvslam {
 namespace {
@@ -17,6 +18,14 @@ void CheckMasks(const std::vector<Instance>& instances, const cv::Size& size,
                   ": an instance mask is not CV_8UC1 of the image's size");
     }
   }
+}
+
+bool AnyPotentialMover(const std::vector<Instance>& instances, const ClassTable* classes) {
+  if (classes == nullptr) return false;
+  for (const Instance& instance : instances) {
+    if (classes->IsPotentiallyMoving(instance.class_id)) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -74,6 +83,8 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
     out.instances = newest.masks->segmentation.instances;
     carried_from_ = next_index_;
     carried_from_timestamp_ = timestamp;
+    carried_movers_ = AnyPotentialMover(out.instances, classes_.get());
+    frames_expired_ = 0;
     masks_->RecordFresh();
     Record("segmentation_wait", watch.ElapsedMs());
     Record("segmentation", newest.masks->segment_ms);
@@ -91,6 +102,7 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
       out.instances = carrier_.CarryThrough(found.instances, steps, size);
       carried_from_ = found.frame_index;
       carried_from_timestamp_ = found.timestamp;
+      carried_movers_ = AnyPotentialMover(found.instances, classes_.get());
     } else if (carried_from_ && previous_) {
       out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
     }
@@ -104,7 +116,19 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   }
   const std::size_t age = next_index_ - *carried_from_;
   // Not re-detected for too long: the objects expire (the ID tracker may still remember them).
-  if (age > static_cast<std::size_t>(config_.segmentation.carry_frames)) out.instances.clear();
+  const int carry_frames = config_.segmentation.carry_frames;
+  if (age > static_cast<std::size_t>(carry_frames)) {
+    out.instances.clear();
+    // Movers were in view and nothing says where they are now. Keyframes wait for the
+    // network's next masks, but not longer than carry_frames more frames: a network that late
+    // must not stop mapping.
+    if (carried_movers_ && ++frames_expired_ <= carry_frames) {
+      report_.masks_expired = true;
+      ++stats_.frames_masks_expired;
+    }
+  } else {
+    frames_expired_ = 0;
+  }
   const double carry_ms = watch.ElapsedMs();
   masks_->RecordCarried(age, (timestamp - carried_from_timestamp_) * 1000.0, carry_ms);
   Record("segmentation_wait", carry_ms);

@@ -42,7 +42,8 @@ nlohmann::json DynamicStatsJson(const DynamicStats& s) {
             {"expected", s.keyframes_expected},
             {"own_masks", s.keyframes_own_masks},
             {"waits", s.keyframe_waits},
-            {"waits_fresh", s.keyframe_waits_fresh}}},
+            {"waits_fresh", s.keyframe_waits_fresh},
+            {"frames_masks_expired", s.frames_masks_expired}}},
           {"unlabelled_regions", s.unlabelled_regions},
           {"map_points_culled", s.map_points_culled},
           {"mask_pixels_completed", s.mask_pixels_completed}};
