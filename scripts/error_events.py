@@ -11,6 +11,10 @@ summarises. Prints the worst stretches of --window frames (by mean error, not ov
 the events in them (masks, movers' share, features removed, keyframes, lost frames, unlabelled
 regions, carried masks), and with --tsv writes one line per frame: error and events.
 
+It also says whether the error comes from the movers at all: the RMS error (same alignment) over
+the frames with no potentially-moving object in view, against the frames with one or more. When
+both are alike, the people are not what limits the run; the camera's own tracking is.
+
 It also splits the error by how fast it changes. Per-frame noise is read from the second
 difference of consecutive positions (white noise of sigma gives sqrt(6) sigma; a smooth camera
 path gives almost none, the ground truth shows how little). The ATE of the estimate averaged over
@@ -117,6 +121,21 @@ def noise_and_slow_error(matched, window):
     return jitter, truth_jitter, noise, math.sqrt(squared / len(truth))
 
 
+def error_by_objects_in_view(errors, log):
+    """(count, RMS error) over the frames whose log row shows no potentially-moving object, and
+    over those with one or more; None when the frame log has no `objects` column."""
+    groups = {False: [], True: []}
+    for t, e in errors:
+        row = log.get(round(t, 4))
+        if row is None or row.get("objects", "") == "":
+            continue
+        groups[int(row["objects"]) > 0].append(e)
+    if not groups[False] and not groups[True]:
+        return None
+    rms = lambda values: math.sqrt(sum(e * e for e in values) / len(values)) if values else math.nan
+    return (len(groups[False]), rms(groups[False])), (len(groups[True]), rms(groups[True]))
+
+
 def events_of(rows):
     """Summary of the events in a stretch of frame-log rows."""
     def total(key):
@@ -173,6 +192,12 @@ def main():
     print("per-frame noise %.2f cm (second difference RMS %.2f cm, ground truth's %.2f cm); "
           "averaged over %d frames: ATE %.2f cm" % (100 * noise, 100 * jitter, 100 * truth_jitter,
                                                    args.smooth, 100 * slow))
+
+    by_objects = error_by_objects_in_view(errors, log)
+    if by_objects:
+        (free, free_rms), (busy, busy_rms) = by_objects
+        print("frames without potentially-moving objects in view: %d, RMS error %.2f cm; "
+              "with them: %d, RMS error %.2f cm" % (free, 100 * free_rms, busy, 100 * busy_rms))
 
     taken = []
     order = sorted(range(len(errors) - args.window + 1),

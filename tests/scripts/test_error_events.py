@@ -26,6 +26,16 @@ def truth_position(i, speed):
     return [speed * t, 0.1 * math.sin(0.8 * t), 0.05 * math.cos(0.5 * t)]
 
 
+def write_files(tmp_path, truth_lines, estimate_lines, log_lines):
+    """The run folder the script reads, with an identity alignment in eval.json."""
+    (tmp_path / "truth.txt").write_text("\n".join(truth_lines) + "\n")
+    (tmp_path / "CameraTrajectory.txt").write_text("\n".join(estimate_lines) + "\n")
+    (tmp_path / "frames.tsv").write_text("\n".join(log_lines) + "\n")
+    identity = {"rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "translation": [0, 0, 0],
+                "scale": 1.0}
+    (tmp_path / "eval.json").write_text(json.dumps({"alignment": identity}))
+
+
 def write_run(tmp_path, skipped=(), speed=0.3):
     rng = random.Random(7)
     truth_lines, estimate_lines, log_lines = [], [], ["frame\ttimestamp\ttracked\tkeyframe"]
@@ -41,12 +51,7 @@ def write_run(tmp_path, skipped=(), speed=0.3):
         e = [g[0] + sway + noise[0], g[1] + noise[1], g[2] + noise[2]]
         estimate_lines.append("%.6f %.9f %.9f %.9f 0 0 0 1" % (stamp, *e))
         log_lines.append("%d\t%.6f\t1\t0" % (i + 1, stamp))
-    (tmp_path / "truth.txt").write_text("\n".join(truth_lines) + "\n")
-    (tmp_path / "CameraTrajectory.txt").write_text("\n".join(estimate_lines) + "\n")
-    (tmp_path / "frames.tsv").write_text("\n".join(log_lines) + "\n")
-    identity = {"rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "translation": [0, 0, 0],
-                "scale": 1.0}
-    (tmp_path / "eval.json").write_text(json.dumps({"alignment": identity}))
+    write_files(tmp_path, truth_lines, estimate_lines, log_lines)
 
 
 def run_script(tmp_path):
@@ -84,3 +89,39 @@ def test_skipped_frames_are_not_read_as_noise(tmp_path):
     # Neither path's second difference spans a gap.
     assert abs(jitter - math.sqrt(6) * expected_noise_cm) < 0.1 * math.sqrt(6) * expected_noise_cm
     assert truth_jitter < 0.05
+
+
+def write_run_with_people(tmp_path, people_from, free_error_m, busy_error_m):
+    """A run whose frames from `people_from` on have two people in view (frame-log `objects`):
+    the error is free_error_m before them and busy_error_m with them, its sign alternating."""
+    truth_lines, estimate_lines = [], []
+    log_lines = ["frame\ttimestamp\ttracked\tkeyframe\tobjects"]
+    for i in range(FRAMES):
+        stamp = 1000.0 + i * PERIOD
+        g = truth_position(i, 0.3)
+        truth_lines.append("%.6f %.9f %.9f %.9f 0 0 0 1" % (stamp, *g))
+        people = 2 if i >= people_from else 0
+        error = (busy_error_m if people else free_error_m) * (1 if i % 2 else -1)
+        estimate_lines.append("%.6f %.9f %.9f %.9f 0 0 0 1" % (stamp, g[0], g[1] + error, g[2]))
+        log_lines.append("%d\t%.6f\t1\t0\t%d" % (i + 1, stamp, people))
+    write_files(tmp_path, truth_lines, estimate_lines, log_lines)
+
+
+def test_error_split_by_people_in_view(tmp_path):
+    write_run_with_people(tmp_path, people_from=200, free_error_m=0.01, busy_error_m=0.03)
+    result = subprocess.run([sys.executable, SCRIPT, str(tmp_path), str(tmp_path / "truth.txt")],
+                            capture_output=True, text=True, check=True)
+    split = re.search(r"without potentially-moving objects in view: (\d+), RMS error ([\d.]+) cm; "
+                      r"with them: (\d+), RMS error ([\d.]+) cm", result.stdout)
+    assert split, result.stdout
+    free, free_cm, busy, busy_cm = split.groups()
+    assert (int(free), int(busy)) == (200, FRAMES - 200)
+    assert abs(float(free_cm) - 1.0) < 0.01
+    assert abs(float(busy_cm) - 3.0) < 0.01
+
+
+def test_no_split_without_an_objects_column(tmp_path):
+    write_run(tmp_path)
+    result = subprocess.run([sys.executable, SCRIPT, str(tmp_path), str(tmp_path / "truth.txt")],
+                            capture_output=True, text=True, check=True)
+    assert "potentially-moving" not in result.stdout
