@@ -11,15 +11,16 @@ summarises. Prints the worst stretches of --window frames (by mean error, not ov
 the events in them (masks, movers' share, features removed, keyframes, lost frames, unlabelled
 regions, carried masks), and with --tsv writes one line per frame: error and events.
 
-It also says whether the error comes from the movers at all: the RMS error (same alignment) over
-the frames with no potentially-moving object in view, against the frames with one or more. When
-both are alike, the people are not what limits the run; the camera's own tracking is.
-
-It also splits the error by how fast it changes. Per-frame noise is read from the second
+It splits the error by how fast it changes. Per-frame noise is read from the second
 difference of consecutive positions (white noise of sigma gives sqrt(6) sigma; a smooth camera
 path gives almost none, the ground truth shows how little). The ATE of the estimate averaged over
 --smooth frames (a centred window, same alignment) is the slow part: drift and bias that
 no per-frame filter can remove.
+
+And it says whether the error comes from the movers at all: the RMS error (same alignment) over
+the frames with no potentially-moving object in view, against the frames with one or more. When
+both are alike, the people are not what limits the run; the camera's own tracking is.
+
 Only the standard library: it runs wherever python3 does.
 """
 import argparse
@@ -121,6 +122,10 @@ def noise_and_slow_error(matched, window):
     return jitter, truth_jitter, noise, math.sqrt(squared / len(truth))
 
 
+def rms(values):
+    return math.sqrt(sum(v * v for v in values) / len(values)) if values else math.nan
+
+
 def error_by_objects_in_view(errors, log):
     """(count, RMS error) over the frames whose log row shows no potentially-moving object, and
     over those with one or more; None when the frame log has no `objects` column."""
@@ -132,7 +137,6 @@ def error_by_objects_in_view(errors, log):
         groups[int(row["objects"]) > 0].append(e)
     if not groups[False] and not groups[True]:
         return None
-    rms = lambda values: math.sqrt(sum(e * e for e in values) / len(values)) if values else math.nan
     return (len(groups[False]), rms(groups[False])), (len(groups[True]), rms(groups[True]))
 
 
@@ -186,7 +190,7 @@ def main():
         sys.exit("error: %s: no pose matches the ground truth in time" % run)
     matched = [(t, q, g) for t, _, q, g in errors]
     errors = [(t, e) for t, e, _, _ in errors]
-    rmse = math.sqrt(sum(e * e for _, e in errors) / len(errors))
+    rmse = rms([e for _, e in errors])
     print("%d poses matched, ATE RMSE %.2f cm" % (len(errors), 100 * rmse))
     jitter, truth_jitter, noise, slow = noise_and_slow_error(matched, args.smooth)
     print("per-frame noise %.2f cm (second difference RMS %.2f cm, ground truth's %.2f cm); "

@@ -54,14 +54,18 @@ def write_run(tmp_path, skipped=(), speed=0.3):
     write_files(tmp_path, truth_lines, estimate_lines, log_lines)
 
 
+def script_output(tmp_path):
+    return subprocess.run([sys.executable, SCRIPT, str(tmp_path), str(tmp_path / "truth.txt")],
+                          capture_output=True, text=True, check=True).stdout
+
+
 def run_script(tmp_path):
-    result = subprocess.run([sys.executable, SCRIPT, str(tmp_path), str(tmp_path / "truth.txt")],
-                            capture_output=True, text=True, check=True)
-    found = re.search(r"ATE RMSE ([\d.]+) cm", result.stdout)
+    stdout = script_output(tmp_path)
+    found = re.search(r"ATE RMSE ([\d.]+) cm", stdout)
     split = re.search(r"per-frame noise ([\d.]+) cm \(second difference RMS ([\d.]+) cm, "
                       r"ground truth's ([\d.]+) cm\); averaged over 9 frames: ATE ([\d.]+) cm",
-                      result.stdout)
-    assert found and split, result.stdout
+                      stdout)
+    assert found and split, stdout
     noise, jitter, truth_jitter, slow = (float(v) for v in split.groups())
     return float(found.group(1)), noise, jitter, truth_jitter, slow
 
@@ -109,11 +113,10 @@ def write_run_with_people(tmp_path, people_from, free_error_m, busy_error_m):
 
 def test_error_split_by_people_in_view(tmp_path):
     write_run_with_people(tmp_path, people_from=200, free_error_m=0.01, busy_error_m=0.03)
-    result = subprocess.run([sys.executable, SCRIPT, str(tmp_path), str(tmp_path / "truth.txt")],
-                            capture_output=True, text=True, check=True)
+    stdout = script_output(tmp_path)
     split = re.search(r"without potentially-moving objects in view: (\d+), RMS error ([\d.]+) cm; "
-                      r"with them: (\d+), RMS error ([\d.]+) cm", result.stdout)
-    assert split, result.stdout
+                      r"with them: (\d+), RMS error ([\d.]+) cm", stdout)
+    assert split, stdout
     free, free_cm, busy, busy_cm = split.groups()
     assert (int(free), int(busy)) == (200, FRAMES - 200)
     assert abs(float(free_cm) - 1.0) < 0.01
@@ -122,6 +125,4 @@ def test_error_split_by_people_in_view(tmp_path):
 
 def test_no_split_without_an_objects_column(tmp_path):
     write_run(tmp_path)
-    result = subprocess.run([sys.executable, SCRIPT, str(tmp_path), str(tmp_path / "truth.txt")],
-                            capture_output=True, text=True, check=True)
-    assert "potentially-moving" not in result.stdout
+    assert "potentially-moving" not in script_output(tmp_path)
