@@ -54,6 +54,22 @@ std::string TrajectoryFileNames(TrajectoryFormat format) {
   return names;
 }
 
+// Each thread's CPU over the frames, and how long it waited for a core: a deadline missed for
+// want of a core needs another fix than one missed for too much work.
+void PrintThreadUsage(const std::vector<ThreadUsage>& threads) {
+  if (threads.empty()) return;
+  std::printf("threads:     CPU s and waiting for a core s, first frame to last:");
+  for (const ThreadUsage& thread : threads) {
+    if (thread.cpu_s < 0.005) continue;  // threads that slept throughout
+    if (thread.runqueue_wait_s) {
+      std::printf(" %s %.2f/%.2f", thread.name.c_str(), thread.cpu_s, *thread.runqueue_wait_s);
+    } else {
+      std::printf(" %s %.2f/?", thread.name.c_str(), thread.cpu_s);
+    }
+  }
+  std::printf("\n");
+}
+
 void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   const SystemStats& s = summary.stats;
   const double ratio = s.frames > 0 ? 100.0 * s.tracked / s.frames : 0.0;
@@ -84,6 +100,7 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
       "fps:         %.1f (wall clock: %zu frames in %.2f s, reading and shutdown drain "
       "included; %.1f in tracking calls alone)\n",
       summary.fps, s.frames, summary.wall_s, s.tracking_fps);
+  PrintThreadUsage(summary.threads);
   if (s.dynamic) {
     const DynamicStats& d = *s.dynamic;
     std::printf("removed:     %zu of %zu features (%zu on objects, %zu unlabelled motion)\n",

@@ -35,7 +35,7 @@ class Signal {
 };
 
 TEST(SideWorkerTest, EveryItemRunsOnceAndTheHelperTakesSomeWhileTheCallerIsBusy) {
-  SideWorker worker;
+  SideWorker worker("test-helper");
   for (int round = 0; round < 20; ++round) {
     std::vector<std::atomic<int>> runs(8);
     std::vector<int> thread_of(8, -1);
@@ -64,7 +64,7 @@ TEST(SideWorkerTest, EveryItemRunsOnceAndTheHelperTakesSomeWhileTheCallerIsBusy)
 }
 
 TEST(SideWorkerTest, AnExceptionReachesTheCallerAndTheWorkerServesAgain) {
-  SideWorker worker;
+  SideWorker worker("test-helper");
   EXPECT_THROW(worker.ForEach(4,
                               [](int item, int) {
                                 if (item == 2) throw std::runtime_error("item 2");
@@ -77,7 +77,7 @@ TEST(SideWorkerTest, AnExceptionReachesTheCallerAndTheWorkerServesAgain) {
 }
 
 TEST(SideWorkerTest, StartedItemsRunBesideTheCallerAndFinishWaitsForThem) {
-  SideWorker worker;
+  SideWorker worker("test-helper");
   int helper_runs = 0;
   for (int round = 0; round < 20; ++round) {
     std::atomic<int> runs{0};
@@ -104,7 +104,7 @@ TEST(SideWorkerTest, StartedItemsRunBesideTheCallerAndFinishWaitsForThem) {
 }
 
 TEST(SideWorkerTest, FinishRethrowsAStartedItemsExceptionAndMisuseIsRefused) {
-  SideWorker worker;
+  SideWorker worker("test-helper");
   worker.Start(1, [](int, int) { throw std::runtime_error("flow failed"); });
   EXPECT_THROW(worker.Start(1, [](int, int) {}), std::logic_error);
   EXPECT_THROW(worker.ForEach(1, [](int, int) {}), std::logic_error);

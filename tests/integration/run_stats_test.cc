@@ -1,6 +1,6 @@
 // The run's figures on a short synthetic sequence: stats.json's fps is the whole run's wall-clock
 // throughput (reading images and the shutdown drain included), the per-call tracking rate has its
-// own key, and the run's wall time is written.
+// own key, the run's wall time is written, and so is each thread's CPU time.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -25,14 +25,24 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-TEST(RunStatsTest, FpsIsWallClockThroughputOfTheWholeRun) {
-  const fs::path root = test::FreshTempFolder("drvslam_run_stats_test");
-  const std::string failure = test::SynthesizeSequence(
-      root, "--scenario static_xyz --frames " + std::to_string(kFrames) + " --seed 2");
-  ASSERT_TRUE(failure.empty()) << failure;
+// A fresh folder `name` with a kFrames-frame static sequence in seq/; the run's options write to
+// out/. Empty options.dataset when the sequence could not be made (`failure` says why).
+RunOptions StaticSequenceRun(const std::string& name, fs::path* root, std::string* failure) {
+  *root = test::FreshTempFolder(name);
+  *failure = test::SynthesizeSequence(
+      *root, "--scenario static_xyz --frames " + std::to_string(kFrames) + " --seed 2");
   RunOptions options;
-  options.dataset = (root / "seq").string();
-  options.out_dir = (root / "out").string();
+  if (!failure->empty()) return options;
+  options.dataset = (*root / "seq").string();
+  options.out_dir = (*root / "out").string();
+  return options;
+}
+
+TEST(RunStatsTest, FpsIsWallClockThroughputOfTheWholeRun) {
+  fs::path root;
+  std::string failure;
+  RunOptions options = StaticSequenceRun("drvslam_run_stats_test", &root, &failure);
+  ASSERT_TRUE(failure.empty()) << failure;
   options.sequential = true;
   // Time spent between frames, inside the frame loop but outside the tracking calls (as reading
   // images is): the run's throughput must count it.
@@ -72,6 +82,42 @@ TEST(RunStatsTest, FpsIsWallClockThroughputOfTheWholeRun) {
   EXPECT_DOUBLE_EQ(summary.wall_s, wall_s);
   EXPECT_DOUBLE_EQ(summary.stats.tracking_fps, tracking_fps);
   EXPECT_EQ(summary.sequence_frames, kFrames);
+  fs::remove_all(root);
+}
+
+// stats.json lists what each thread used over the frames, the calling thread as "tracking".
+TEST(RunStatsTest, ThreadsListTrackingAndLocalMappingWithTheirCpuTime) {
+  fs::path root;
+  std::string failure;
+  RunOptions options = StaticSequenceRun("drvslam_run_threads_test", &root, &failure);
+  ASSERT_TRUE(failure.empty()) << failure;
+  options.sequential = false;  // threaded: local mapping has a thread of its own
+  const RunSummary summary = RunSequence(options);
+
+  std::ifstream in(root / "out" / "stats.json");
+  ASSERT_TRUE(in.good());
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  ASSERT_TRUE(stats["threads"].is_array()) << stats.dump(2);
+#ifdef __linux__
+  ASSERT_GT(stats["mapping"]["keyframes_processed"].get<int>(), 0);
+  const auto find = [&](const std::string& name) {
+    for (const nlohmann::json& thread : stats["threads"]) {
+      if (thread["name"] == name) return thread;
+    }
+    return nlohmann::json();
+  };
+  const nlohmann::json tracking = find("tracking");
+  const nlohmann::json mapping = find("drv-mapping");
+  ASSERT_FALSE(tracking.is_null()) << stats["threads"].dump(2);
+  ASSERT_FALSE(mapping.is_null()) << stats["threads"].dump(2);
+  EXPECT_GT(tracking["cpu_s"].get<double>(), 0.0);
+  EXPECT_GT(mapping["cpu_s"].get<double>(), 0.0);
+  for (const nlohmann::json& thread : stats["threads"]) {
+    if (!thread["runqueue_wait_s"].is_null())
+      EXPECT_GE(thread["runqueue_wait_s"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(summary.threads.size(), stats["threads"].size());
+#endif
   fs::remove_all(root);
 }
 

@@ -2,9 +2,15 @@
 
 #include <stdexcept>
 
+#include "drvslam/core/thread_name.h"
+
 namespace drvslam {
 
-SideWorker::SideWorker() : thread_([this] { Loop(); }) {}
+SideWorker::SideWorker(const char* name)
+    : thread_([this, name] {
+        NameCurrentThread(name);
+        Loop();
+      }) {}
 
 SideWorker::~SideWorker() {
   {

@@ -20,7 +20,8 @@ namespace drvslam {
 
 class SideWorker {
  public:
-  SideWorker();
+  // `name` names the helper thread (core/thread_name.h).
+  explicit SideWorker(const char* name);
   // Joins the helper.
   ~SideWorker();
   SideWorker(const SideWorker&) = delete;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "drvslam/core/thread_budget.h"
+#include "drvslam/core/thread_name.h"
 #include "drvslam/dense/dense_surface.h"
 #include "drvslam/dense/voxel_grid.h"
 
@@ -67,6 +68,7 @@ void DenseMapper::Shutdown() {
 }
 
 void DenseMapper::Run() {
+  NameCurrentThread("drv-dense");
   {
     std::lock_guard<std::mutex> lock(worker_priority_mutex_);
     worker_priority_ = LowerCurrentThreadPriority(BackgroundStage::kDenseMapping);

@@ -136,7 +136,7 @@ DynamicFrontEnd::DynamicFrontEnd(DynamicFrontEndConfig config, int base_features
   }
   stats_.realtime = config_.realtime;
   if (config_.options.flow_thread && !config_.sequential) {
-    flow_helper_ = std::make_unique<SideWorker>();
+    flow_helper_ = std::make_unique<SideWorker>("drv-flow");
   }
   if (!config_.debug_dir.empty()) {
     std::error_code error;

@@ -66,7 +66,7 @@ OrbExtractor::OrbExtractor(const OrbExtractorOptions& options) : options_(option
   pyramid_.resize(levels);
   level_corners_.resize(levels);
   GetBriefPattern();  // build the table now rather than inside the first frame
-  if (options_.threads >= 2 && levels >= 2) helper_ = std::make_unique<SideWorker>();
+  if (options_.threads >= 2 && levels >= 2) helper_ = std::make_unique<SideWorker>("drv-orb");
 }
 
 void OrbExtractor::ForEachLevel(const std::function<void(int, Scratch&)>& work) {

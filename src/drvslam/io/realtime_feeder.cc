@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/thread_name.h"
 
 namespace drvslam {
 
@@ -13,7 +14,10 @@ RealtimeFeeder::RealtimeFeeder(const TumDataset& dataset, std::size_t count, dou
                                FrameRejections* rejections, std::size_t preload_bytes)
     : dataset_(dataset), rejections_(rejections) {
   if (!(rate > 0.0)) throw Error("RealtimeFeeder: the playback rate must be positive");
-  thread_ = std::thread([this, count, rate, preload_bytes] { Play(count, rate, preload_bytes); });
+  thread_ = std::thread([this, count, rate, preload_bytes] {
+    NameCurrentThread("drv-camera");
+    Play(count, rate, preload_bytes);
+  });
 }
 
 namespace {
@@ -51,6 +55,7 @@ bool RealtimeFeeder::Preload(std::size_t count, std::size_t budget) {
   std::vector<std::thread> threads;
   for (std::size_t w = 0; w < workers; ++w) {
     threads.emplace_back([&, w] {
+      NameCurrentThread("drv-decode");
       for (std::size_t i = first + w; i < count; i += workers) {
         try {
           preloaded_[i] = dataset_.Read(i);

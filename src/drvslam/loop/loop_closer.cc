@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "drvslam/core/thread_budget.h"
+#include "drvslam/core/thread_name.h"
 #include "drvslam/loop/global_bundle_adjuster.h"
 #include "drvslam/loop/loop_corrector.h"
 #include "drvslam/loop/loop_verifier.h"
@@ -92,6 +93,7 @@ void LoopCloser::Record(const char* stage, double milliseconds) {
 }
 
 void LoopCloser::Run() {
+  NameCurrentThread("drv-loop");
   LowerCurrentThreadPriority(BackgroundStage::kLoopClosing);
   while (auto keyframe = queue_.Pop()) {
     try {
@@ -202,6 +204,7 @@ void LoopCloser::Process(const std::shared_ptr<KeyFrame>& keyframe) {
   if (!options_.global_bundle_adjustment) return;
   if (threaded_) {
     global_ba_thread_ = std::thread([this] {
+      NameCurrentThread("drv-global-ba");
       try {
         GlobalBundleAdjustment();
       } catch (const std::exception& e) {

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "drvslam/core/thread_budget.h"
+#include "drvslam/core/thread_name.h"
 #include "drvslam/mapping/keyframe_culling.h"
 #include "drvslam/mapping/keyframe_insertion.h"
 #include "drvslam/mapping/local_bundle_adjuster.h"
@@ -123,6 +124,7 @@ void LocalMapper::Resume() {
 }
 
 void LocalMapper::Run() {
+  NameCurrentThread("drv-mapping");
   LowerCurrentThreadPriority(BackgroundStage::kLocalMapping);
   while (auto queued = queue_.Pop()) {
     const std::shared_ptr<KeyFrame>& keyframe = queued->keyframe;

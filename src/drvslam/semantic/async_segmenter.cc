@@ -8,6 +8,7 @@
 
 #include "drvslam/core/error.h"
 #include "drvslam/core/thread_budget.h"
+#include "drvslam/core/thread_name.h"
 
 namespace drvslam {
 
@@ -60,6 +61,7 @@ void AsyncSegmenter::Submit(std::size_t frame_index, double timestamp, const cv:
 }
 
 void AsyncSegmenter::WorkerLoop() {
+  NameCurrentThread("drv-segment");
   LowerCurrentThreadPriority(BackgroundStage::kSegmentation);
   while (std::optional<Job> job = queue_.Pop()) {
     {

@@ -81,6 +81,9 @@ bool ParseOnOff(const std::string& value, const std::string& option) {
 
 using Clock = std::chrono::steady_clock;
 
+// The calling thread tracks; its own name is the application's.
+constexpr const char* kTrackingThreadName = "tracking";
+
 // Finishes the live viewer of a run and detaches it from the system it reads; declared after
 // the system, so it runs first when the scope ends, also on an exception.
 struct ViewerStop {
@@ -102,8 +105,11 @@ void WriteSparseMap(const Map& map, const std::string& path) {
 
 // `started`: the start of the frame loop; the run's wall time ends when the threads have drained.
 // `save_map`: where to write the map (empty: nowhere).
+// `threads_at_start`: ReadThreadUsage when the frame loop started.
 void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
-                  const std::string& save_map, const GridOptions& grid, RunSummary* summary) {
+                  const std::vector<ThreadUsage>& threads_at_start, const std::string& save_map,
+                  const GridOptions& grid, RunSummary* summary) {
+  summary->threads = UsageSince(threads_at_start, ReadThreadUsage(kTrackingThreadName));
   // Local mapping finishes its queue first: the trajectories then include its corrections.
   system.Shutdown();
   summary->wall_s = std::chrono::duration<double>(Clock::now() - started).count();
@@ -134,10 +140,11 @@ void FileRejections(const FrameRejections& rejections, RunSummary* summary) {
 // After a failure: keeps what was tracked so far. A failure while writing must not hide the one
 // that stopped the run, so it is only logged.
 void WriteOutputsAfterFailure(System& system, const fs::path& out_dir, Clock::time_point started,
+                              const std::vector<ThreadUsage>& threads_at_start,
                               const GridOptions& grid, RunSummary* summary) {
   try {
     // A map is saved only from a run that ended well.
-    WriteOutputs(system, out_dir, started, /*save_map=*/"", grid, summary);
+    WriteOutputs(system, out_dir, started, threads_at_start, /*save_map=*/"", grid, summary);
   } catch (const std::exception& error) {
     spdlog::error("could not write the outputs after the failure: {}", error.what());
   } catch (...) {
@@ -290,6 +297,7 @@ RunSummary RunSequence(const RunOptions& options,
   // The frame being read or tracked, for the message of an unexpected failure.
   std::size_t current = 0;
   const Clock::time_point started = Clock::now();
+  const std::vector<ThreadUsage> threads_at_start = ReadThreadUsage(kTrackingThreadName);
   try {
     if (paced) {
       feeder.emplace(dataset, total, 1.0, &rejections);
@@ -323,7 +331,7 @@ RunSummary RunSequence(const RunOptions& options,
     // Bad input: keep what was tracked so far, then report the failure.
     finish_feeder();
     FileRejections(rejections, &summary);
-    WriteOutputsAfterFailure(system, out_dir, started, setup.grid, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, threads_at_start, setup.grid, &summary);
     throw;
   } catch (const std::exception& error) {
     // Not bad input (cv::Exception, std::bad_alloc, a solver failure): the trajectory is kept
@@ -332,7 +340,7 @@ RunSummary RunSequence(const RunOptions& options,
                   current, total, error.what(), out_dir.string());
     finish_feeder();
     FileRejections(rejections, &summary);
-    WriteOutputsAfterFailure(system, out_dir, started, setup.grid, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, threads_at_start, setup.grid, &summary);
     throw;
   } catch (...) {
     spdlog::error(
@@ -341,12 +349,12 @@ RunSummary RunSequence(const RunOptions& options,
         current, total, out_dir.string());
     finish_feeder();
     FileRejections(rejections, &summary);
-    WriteOutputsAfterFailure(system, out_dir, started, setup.grid, &summary);
+    WriteOutputsAfterFailure(system, out_dir, started, threads_at_start, setup.grid, &summary);
     throw;
   }
   finish_feeder();
   FileRejections(rejections, &summary);
-  WriteOutputs(system, out_dir, started, options.save_map, setup.grid, &summary);
+  WriteOutputs(system, out_dir, started, threads_at_start, options.save_map, setup.grid, &summary);
   // The page gets the final map (after the shutdown drain) and the end of the run.
   if (viewer) viewer->Finish();
   if (rejections.Accepted() == 0 && rejections.Count() > 0 && !summary.interrupted) {
@@ -476,6 +484,15 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
                              {"mean_ms", timing.mean_ms},
                              {"max_ms", timing.max_ms},
                              {"count", timing.count}};
+  }
+  json["threads"] = nlohmann::json::array();
+  for (const ThreadUsage& thread : summary.threads) {
+    json["threads"].push_back(
+        {{"name", thread.name},
+         {"cpu_s", thread.cpu_s},
+         {"runqueue_wait_s", thread.runqueue_wait_s ? nlohmann::json(*thread.runqueue_wait_s)
+                                                    : nlohmann::json(nullptr)},
+         {"involuntary_switches", thread.involuntary_switches}});
   }
   std::ofstream out(path);
   if (!out) throw Error(path + ": cannot open for writing");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "drvslam/core/settings.h"
+#include "drvslam/core/thread_usage.h"
 #include "drvslam/dense/dense_point.h"
 #include "drvslam/dense/grid_options.h"
 #include "drvslam/io/frame_rejections.h"
@@ -143,6 +144,9 @@ struct RunSummary {
   double map_save_ms = 0.0;
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
+  // What each thread used from the first frame until the last one was tracked (before the
+  // shutdown drain); the calling thread, which tracks, is named "tracking". Empty off Linux.
+  std::vector<ThreadUsage> threads;
 };
 
 // progress(done, total) is called after every frame; `stop` (may be null) ends the loop early
@@ -169,7 +173,8 @@ RunSummary RunSequence(const RunOptions& options,
 // rejected, corrections, global_bas, global_bas_interrupted, detection_ms, correction_ms,
 // global_ba_ms, loops[{keyframe, loop_keyframe, timestamp, matches, correction_m,
 // correction_deg}]}), and map_file.{loaded (path or null), loaded_keyframes, loaded_points,
-// loaded_dense_points, load_ms, localization, saved (path or null), bytes, save_ms}).
+// loaded_dense_points, load_ms, localization, saved (path or null), bytes, save_ms}), and
+// threads[{name, cpu_s, runqueue_wait_s (null when unknown), involuntary_switches}].
 void WriteStatsJson(const std::string& path, const RunSummary& summary);
 
 }  // namespace drvslam

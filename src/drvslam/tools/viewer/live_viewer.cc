@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "drvslam/core/thread_name.h"
 #include "drvslam/dense/dense_mapper.h"
 #include "drvslam/dynamic/dynamic_drawing.h"
 #include "drvslam/dynamic/dynamic_front_end.h"
@@ -88,7 +89,10 @@ LiveViewer::LiveViewer(System& system, LiveViewerOptions options)
               }),
       pending_(std::make_unique<Pending>()) {
   server_.Append(nlohmann::json({{"type", "hello"}, {"title", options_.title}}).dump());
-  thread_ = std::thread([this] { Run(); });
+  thread_ = std::thread([this] {
+    NameCurrentThread("drv-viewer");
+    Run();
+  });
 }
 
 LiveViewer::~LiveViewer() { Finish(); }

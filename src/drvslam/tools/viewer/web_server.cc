@@ -11,6 +11,7 @@
 #include <websocketpp/server.hpp>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/thread_name.h"
 
 namespace drvslam {
 namespace {
@@ -175,7 +176,10 @@ WebServer::WebServer(int port, HttpHandler handler) : impl_(std::make_unique<Imp
   s.server.set_timer(kPumpIntervalMs, [&s](const std::error_code& e) {
     if (!e) s.Tick();
   });
-  s.thread = std::thread([&s] { s.server.run(); });
+  s.thread = std::thread([&s] {
+    NameCurrentThread("drv-web");
+    s.server.run();
+  });
 }
 
 WebServer::~WebServer() { Stop(); }
