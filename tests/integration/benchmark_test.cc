@@ -100,6 +100,44 @@ TEST(BenchmarkAggregateTest, FramesSkippedOnlyWhenEveryFinishedRunReportsThem) {
   EXPECT_DOUBLE_EQ(a.frames_skipped->max, 9.0);
 }
 
+// A YOLO entry with dynamic handling on and `runs` finished runs.
+BenchmarkEntryResult YoloEntry(const std::string& name, const std::string& mode, int runs) {
+  BenchmarkEntryResult entry;
+  entry.entry.name = name;
+  entry.entry.mode = mode;
+  entry.segmenter = "yolo";
+  entry.segmenter_used = entry.dynamic_on = true;
+  entry.runs_requested = runs;
+  for (int i = 1; i <= runs; ++i) entry.runs.push_back(FinishedRun(i, 0.012 + 0.001 * i, 0.95));
+  return entry;
+}
+
+TEST(BenchmarkReportTest, RealtimeTablesShowHowLongTrackingWaitedForACore) {
+  BenchmarkEntryResult realtime = YoloEntry("crowd_realtime", "realtime", 3);
+  const double waits[] = {4.2, 3.1, 5.4};
+  for (std::size_t i = 0; i < 3; ++i) {
+    realtime.runs[i].frames_skipped = 10 + i;
+    realtime.runs[i].camera_to_done_s = 16.0;
+    realtime.runs[i].tracking_wait_s = waits[i];
+  }
+  realtime.aggregate = AggregateRuns(realtime.runs);
+  ASSERT_TRUE(realtime.aggregate.tracking_wait_s.has_value());
+  EXPECT_DOUBLE_EQ(realtime.aggregate.tracking_wait_s->median, 4.2);
+  EXPECT_DOUBLE_EQ(realtime.aggregate.tracking_wait_s->max, 5.4);
+  BenchmarkReport report;
+  report.command = "drvslam benchmark --dataset d --mode realtime --runs 3 --out o";
+  report.machine = DescribeMachine();
+  report.entries = {realtime};
+  const std::string md = FormatBenchmarkMarkdown(report);
+  EXPECT_NE(md.find("tracking waited (s)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 4.2 (max 5.4) |"), std::string::npos) << md;  // summary row
+  EXPECT_NE(md.find("| 5.4 |"), std::string::npos) << md;            // run 3's row
+  ExpectRectangularTables(md);
+  const nlohmann::json json = BenchmarkJson(report);
+  EXPECT_DOUBLE_EQ(json["entries"][0]["aggregate"]["tracking_wait_s"]["median"].get<double>(), 4.2);
+  EXPECT_DOUBLE_EQ(json["entries"][0]["runs"][1]["tracking_wait_s"].get<double>(), 3.1);
+}
+
 TEST(BenchmarkListTest, ReadsEntriesWithPathsRelativeToTheListFile) {
   const fs::path root = test::FreshTempFolder("drvslam_benchmark_list");
   FakeSequence(root / "data" / "walking_xyz");

@@ -96,6 +96,9 @@ std::string SummaryRow(const BenchmarkEntryResult& entry, bool with_skipped) {
     row += a.camera_to_done_s
                ? Printf(" %.1f (max %.1f) |", a.camera_to_done_s->median, a.camera_to_done_s->max)
                : " n/a |";
+    row += a.tracking_wait_s
+               ? Printf(" %.1f (max %.1f) |", a.tracking_wait_s->median, a.tracking_wait_s->max)
+               : " n/a |";
   }
   return row + "\n";
 }
@@ -194,7 +197,7 @@ std::string RunRow(const BenchmarkEntryResult& entry, const BenchmarkRun& run, b
                     " | ";
   if (run.status == RunStatus::kFailed) {
     row += "n/a | n/a | n/a | n/a | n/a | " + Printf("%.1f", run.wall_s) + " | n/a | n/a | n/a |";
-    if (with_skipped) row += " n/a | n/a |";
+    if (with_skipped) row += " n/a | n/a | n/a |";
     return row + " " + Cell(run.error) + " |\n";
   }
   row += (run.ate_rmse ? Centimetres(*run.ate_rmse) : na) + " | ";
@@ -206,6 +209,7 @@ std::string RunRow(const BenchmarkEntryResult& entry, const BenchmarkRun& run, b
   if (with_skipped) {
     row += run.frames_skipped ? Printf(" %zu |", *run.frames_skipped) : " n/a |";
     row += run.camera_to_done_s ? Printf(" %.1f |", *run.camera_to_done_s) : " n/a |";
+    row += run.tracking_wait_s ? Printf(" %.1f |", *run.tracking_wait_s) : " n/a |";
   }
   return row + " " + Cell(RunNote(run)) + " |\n";
 }
@@ -259,6 +263,7 @@ nlohmann::json RunJson(const BenchmarkRun& run) {
                              {"vocabulary_load_ms", run.vocabulary_load_ms},
                              {"frames_skipped", OrNull(run.frames_skipped)},
                              {"camera_to_done_s", OrNull(run.camera_to_done_s)},
+                             {"tracking_wait_s", OrNull(run.tracking_wait_s)},
                              {"observer_median_ms", OrNull(run.observer_median_ms)},
                              {"observer_p95_ms", OrNull(run.observer_p95_ms)}});
   return json;
@@ -279,6 +284,7 @@ nlohmann::json AggregateJson(const BenchmarkAggregate& a) {
                          {"track_p95_ms", StatisticsJson(a.track_p95_ms)}};
   if (a.frames_skipped) json["frames_skipped"] = StatisticsJson(*a.frames_skipped);
   if (a.camera_to_done_s) json["camera_to_done_s"] = StatisticsJson(*a.camera_to_done_s);
+  if (a.tracking_wait_s) json["tracking_wait_s"] = StatisticsJson(*a.tracking_wait_s);
   if (a.observer_median_ms) json["observer_median_ms"] = StatisticsJson(*a.observer_median_ms);
   if (a.observer_p95_ms) json["observer_p95_ms"] = StatisticsJson(*a.observer_p95_ms);
   return json;
@@ -340,15 +346,17 @@ std::string FormatBenchmarkMarkdown(const BenchmarkReport& report) {
   text += with_skipped
               ? "; frames skipped (median, max) and, for realtime runs, the time from the "
                 "camera's first frame until every thread drained (wall time without start-up, "
-                "decoding the recording ahead and writing the outputs; median, max).\n\n"
+                "decoding the recording ahead and writing the outputs; median, max), and the "
+                "seconds the tracking thread was ready but waited for a core (stats.json "
+                "`threads`; median, max).\n\n"
               : ".\n\n";
   text +=
       "| entry | segmenter | dynamic | mode | runs | frames | ATE median (cm) | ATE min (cm) | "
       "ATE max (cm) | ATE std (cm) | RPE 1 s trans (cm) | RPE 1 s rot (deg) | tracked median | "
       "tracked min | frames lost | wall (s) | fps | track ms median | track ms p95 |";
-  text += with_skipped ? " frames skipped | camera to done (s) |\n" : "\n";
+  text += with_skipped ? " frames skipped | camera to done (s) | tracking waited (s) |\n" : "\n";
   text += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";
-  text += with_skipped ? "---|---|\n" : "\n";
+  text += with_skipped ? "---|---|---|\n" : "\n";
   bool any_oracle = false;
   for (const BenchmarkEntryResult& entry : report.entries) {
     text += SummaryRow(entry, with_skipped);
@@ -387,9 +395,10 @@ std::string FormatBenchmarkMarkdown(const BenchmarkReport& report) {
   text +=
       "## Runs\n\n| entry | run | status | ATE (cm) | RPE trans (cm) | RPE rot (deg) | tracked | "
       "frames lost | wall (s) | fps | track ms median | track ms p95 |";
-  text += with_skipped ? " frames skipped | camera to done (s) | note |\n" : " note |\n";
+  text += with_skipped ? " frames skipped | camera to done (s) | tracking waited (s) | note |\n"
+                       : " note |\n";
   text += "|---|---|---|---|---|---|---|---|---|---|---|---|---|";
-  text += with_skipped ? "---|---|\n" : "\n";
+  text += with_skipped ? "---|---|---|\n" : "\n";
   for (const BenchmarkEntryResult& entry : report.entries) {
     for (const BenchmarkRun& run : entry.runs) text += RunRow(entry, run, with_skipped);
   }

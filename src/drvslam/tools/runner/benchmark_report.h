@@ -20,13 +20,13 @@ std::string FormatBenchmarkMarkdown(const BenchmarkReport& report);
 //  dynamic, dynamic_setup, mode, dense, loop, max_frames, viewer, runs_requested, run_command,
 //  aggregate{runs, finished, evaluated, ate_rmse_m, rpe_trans_rmse_m, rpe_rot_rmse_deg,
 //  tracked_share, frames_lost, wall_s, fps, track_median_ms, track_p95_ms[, frames_skipped,
-//  camera_to_done_s, observer_median_ms, observer_p95_ms]} (each {count, median, min, max, std,
-//  mean}), runs[{run, out_dir, status, error, frames, tracked, tracked_share, frames_lost,
-//  ate_rmse_m, ate_coverage, rpe_trans_rmse_m, rpe_rot_rmse_deg, eval_note, wall_s, fps,
-//  track_median_ms, track_p95_ms, vocabulary_load_ms, frames_skipped, camera_to_done_s,
-//  observer_median_ms, observer_p95_ms, browser{connected, connect_s, connections, messages,
-//  bytes, note} (viewer entries)}]}]}; metres, degrees, seconds, shares in [0, 1]; null where
-//  not measured.
+//  camera_to_done_s, tracking_wait_s, observer_median_ms, observer_p95_ms]} (each {count, median,
+//  min, max, std, mean}), runs[{run, out_dir, status, error, frames, tracked, tracked_share,
+//  frames_lost, ate_rmse_m, ate_coverage, rpe_trans_rmse_m, rpe_rot_rmse_deg, eval_note, wall_s,
+//  fps, track_median_ms, track_p95_ms, vocabulary_load_ms, frames_skipped, camera_to_done_s,
+//  tracking_wait_s, observer_median_ms, observer_p95_ms, browser{connected, connect_s, connections,
+//  messages, bytes, note} (viewer entries)}]}]}; metres, degrees, seconds, shares in [0, 1]; null
+//  where not measured.
 nlohmann::json BenchmarkJson(const BenchmarkReport& report);
 
 // Writes OUT/benchmark.md and OUT/benchmark.json (each replaced whole, never left half

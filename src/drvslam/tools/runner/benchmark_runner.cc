@@ -114,6 +114,14 @@ RealtimeFigures ReadRealtimeFigures(const fs::path& stats_path) {
   return figures;
 }
 
+// The tracking thread's wait for a core, when the OS reported it.
+std::optional<double> TrackingWaitSeconds(const std::vector<ThreadUsage>& threads) {
+  for (const ThreadUsage& thread : threads) {
+    if (thread.name == kTrackingThreadName) return thread.runqueue_wait_s;
+  }
+  return std::nullopt;
+}
+
 // ATE and RPE of the run's trajectory; eval.json records them, or why they are missing.
 // `sequence_frames`: the frames the run was given, what ATE coverage counts against.
 void Evaluate(const Trajectory& groundtruth, const std::string& trajectory_path,
@@ -272,6 +280,7 @@ BenchmarkRun ExecuteRun(const PreparedEntry& prepared, int index, const fs::path
   const RealtimeFigures realtime = ReadRealtimeFigures(run_dir / "stats.json");
   run.frames_skipped = realtime.frames_skipped;
   run.camera_to_done_s = realtime.camera_to_done_s;
+  if (summary.paced) run.tracking_wait_s = TrackingWaitSeconds(summary.threads);
   if (summary.interrupted) {
     run.status = RunStatus::kInterrupted;
     run.eval_note = "interrupted: not evaluated";
@@ -323,7 +332,7 @@ std::size_t BenchmarkReport::FailedRuns() const {
 
 BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   std::vector<double> ate, rpe_trans, rpe_rot, tracked, lost, wall, fps, median, p95;
-  FigureOfEveryRun skipped, camera_to_done, observer_median, observer_p95;
+  FigureOfEveryRun skipped, camera_to_done, tracking_wait, observer_median, observer_p95;
   BenchmarkAggregate aggregate;
   aggregate.runs = runs.size();
   for (const BenchmarkRun& run : runs) {
@@ -340,6 +349,7 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
     p95.push_back(run.track_p95_ms);
     skipped.Add(run.frames_skipped);
     camera_to_done.Add(run.camera_to_done_s);
+    tracking_wait.Add(run.tracking_wait_s);
     observer_median.Add(run.observer_median_ms);
     observer_p95.Add(run.observer_p95_ms);
     aggregate.browser_connected += run.browser && run.browser->connected;
@@ -356,6 +366,7 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   aggregate.track_p95_ms = ComputeErrorStatistics(p95);
   aggregate.frames_skipped = skipped.Statistics(aggregate.finished);
   aggregate.camera_to_done_s = camera_to_done.Statistics(aggregate.finished);
+  aggregate.tracking_wait_s = tracking_wait.Statistics(aggregate.finished);
   aggregate.observer_median_ms = observer_median.Statistics(aggregate.finished);
   aggregate.observer_p95_ms = observer_p95.Statistics(aggregate.finished);
   return aggregate;

@@ -63,6 +63,9 @@ struct BenchmarkRun {
   // Realtime runs: from the camera's first frame until every thread drained (wall_s without
   // start-up, decoding ahead and writing the outputs).
   std::optional<double> camera_to_done_s;
+  // Realtime runs: seconds the tracking thread was ready to run but waited for a core, first
+  // frame to last (stats.json threads); unset where the OS does not report it.
+  std::optional<double> tracking_wait_s;
   // Stats stage "observer": the tracking thread's time handing each frame to the live viewer
   // (outside "total"); unset when the run had no viewer.
   std::optional<double> observer_median_ms;
@@ -87,6 +90,7 @@ struct BenchmarkAggregate {
   ErrorStatistics track_p95_ms;
   std::optional<ErrorStatistics> frames_skipped;      // when every finished run reports it
   std::optional<ErrorStatistics> camera_to_done_s;    // likewise
+  std::optional<ErrorStatistics> tracking_wait_s;     // likewise
   std::optional<ErrorStatistics> observer_median_ms;  // likewise (viewer entries)
   std::optional<ErrorStatistics> observer_p95_ms;
   std::size_t browser_connected = 0;  // finished runs whose browser connected

@@ -81,9 +81,6 @@ bool ParseOnOff(const std::string& value, const std::string& option) {
 
 using Clock = std::chrono::steady_clock;
 
-// The calling thread tracks; its own name is the application's.
-constexpr const char* kTrackingThreadName = "tracking";
-
 // Finishes the live viewer of a run and detaches it from the system it reads; declared after
 // the system, so it runs first when the scope ends, also on an exception.
 struct ViewerStop {

@@ -99,6 +99,10 @@ DenseCloud SparseMapCloud(const Map& map);
 // this many in a row stop the run with an Error (the sequence is unreadable, not hiccuping).
 inline constexpr std::size_t kMaxConsecutiveRejectedFrames = 30;
 
+// The name RunSummary::threads gives the calling thread, which tracks (its own name is the
+// application's).
+inline constexpr const char* kTrackingThreadName = "tracking";
+
 struct RunSummary {
   SystemStats stats;
   std::string dataset;          // the sequence folder, absolute (stats.json "dataset")
@@ -145,7 +149,7 @@ struct RunSummary {
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
   // What each thread used from the first frame until the last one was tracked (before the
-  // shutdown drain); the calling thread, which tracks, is named "tracking". Empty off Linux.
+  // shutdown drain); the calling thread is kTrackingThreadName. Empty off Linux.
   std::vector<ThreadUsage> threads;
 };
 
