@@ -58,7 +58,7 @@ std::string TrajectoryFileNames(TrajectoryFormat format) {
 // want of a core needs another fix than one missed for too much work.
 void PrintThreadUsage(const std::vector<ThreadUsage>& threads) {
   if (threads.empty()) return;
-  std::printf("threads:     CPU s and waiting for a core s, first frame to last:");
+  std::printf("threads:     CPU s / s waiting for a core, frame loop until the last frame:");
   for (const ThreadUsage& thread : threads) {
     if (thread.cpu_s < 0.005) continue;  // threads that slept throughout
     if (thread.runqueue_wait_s) {

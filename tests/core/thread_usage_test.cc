@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <condition_variable>
+#include <fstream>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "drvslam/core/thread_name.h"
@@ -22,7 +24,21 @@ TEST(ThreadUsageTest, ParsesSchedstatInSeconds) {
   ThreadUsage untouched;
   EXPECT_FALSE(ParseThreadSchedstat("", &untouched));
   EXPECT_FALSE(ParseThreadSchedstat("12", &untouched));
+  // A kernel without scheduler statistics prints zeros: unknown, not idle.
+  EXPECT_FALSE(ParseThreadSchedstat("0 0 0\n", &untouched));
   EXPECT_FALSE(untouched.runqueue_wait_s.has_value());
+}
+
+TEST(ThreadUsageTest, ParsesCpuFromStatWhateverTheThreadIsNamed) {
+  // Fields after the name: state, ppid, pgrp, session, tty, tpgid, flags, minflt, cminflt,
+  // majflt, cmajflt, utime (14), stime (15), ...
+  const std::string stat = "4242 (a ) (odd name) S 1 2 3 4 5 6 7 8 9 10 250 50 0 0 20 0\n";
+  const std::optional<double> cpu = ParseCpuSecondsFromStat(stat, 100);
+  ASSERT_TRUE(cpu.has_value());
+  EXPECT_DOUBLE_EQ(*cpu, 3.0);  // (250 + 50) ticks at 100 a second
+  EXPECT_FALSE(ParseCpuSecondsFromStat("4242 (short) S 1 2", 100).has_value());
+  EXPECT_FALSE(ParseCpuSecondsFromStat("no name field", 100).has_value());
+  EXPECT_FALSE(ParseCpuSecondsFromStat(stat, 0).has_value());
 }
 
 TEST(ThreadUsageTest, ParsesInvoluntarySwitchesFromStatus) {
@@ -50,9 +66,19 @@ TEST(ThreadUsageTest, UsageSinceSubtractsByThreadAndKeepsNewThreadsWhole) {
   EXPECT_DOUBLE_EQ(since[1].cpu_s, 1.0);
   EXPECT_EQ(since[2].name, "b");
   EXPECT_DOUBLE_EQ(since[2].cpu_s, 0.5);
-  // Unknown at the first reading: the later figure stays whole rather than guessed.
-  EXPECT_DOUBLE_EQ(*since[2].runqueue_wait_s, 0.25);
-  EXPECT_EQ(since[2].involuntary_switches, 7);
+  // Unknown at the first reading: unknown over the interval.
+  EXPECT_FALSE(since[2].runqueue_wait_s.has_value());
+  EXPECT_EQ(since[2].involuntary_switches, -1);
+}
+
+TEST(ThreadUsageTest, AThreadIdReusedInBetweenCountsFromZero) {
+  ThreadUsage ended{"old", 10, 5.0, 1.0, 40};
+  ThreadUsage reused{"new", 10, 0.5, 0.1, 2};  // less CPU than the id had: another thread
+  const std::vector<ThreadUsage> since = UsageSince({ended}, {reused});
+  ASSERT_EQ(since.size(), 1u);
+  EXPECT_DOUBLE_EQ(since[0].cpu_s, 0.5);
+  EXPECT_DOUBLE_EQ(*since[0].runqueue_wait_s, 0.1);
+  EXPECT_EQ(since[0].involuntary_switches, 2);
 }
 
 #ifdef __linux__
@@ -92,7 +118,15 @@ TEST(ThreadUsageTest, ListsTheCallerAndANamedBusyThreadWithItsCpuTime) {
   ASSERT_NE(busy, threads.end());
   EXPECT_GE(busy->cpu_s, 0.05);  // 0.1 s spun; /proc/.../stat books whole clock ticks
   EXPECT_LT(busy->cpu_s, 60.0);  // seconds, not nanoseconds or ticks
-  if (busy->runqueue_wait_s) EXPECT_GE(*busy->runqueue_wait_s, 0.0);
+  // Where the kernel keeps scheduler statistics, the wait is read, not left unknown.
+  std::ifstream own("/proc/thread-self/schedstat");
+  std::string own_schedstat;
+  std::getline(own, own_schedstat);
+  ThreadUsage own_usage;
+  if (ParseThreadSchedstat(own_schedstat, &own_usage)) {
+    ASSERT_TRUE(busy->runqueue_wait_s.has_value());
+    EXPECT_LT(*busy->runqueue_wait_s, 3600.0);  // seconds, not nanoseconds
+  }
   for (std::size_t i = 1; i < threads.size(); ++i) {
     EXPECT_GE(threads[i - 1].cpu_s, threads[i].cpu_s) << "sorted by CPU time";
   }

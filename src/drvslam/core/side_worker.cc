@@ -1,14 +1,15 @@
 #include "drvslam/core/side_worker.h"
 
 #include <stdexcept>
+#include <string>
 
 #include "drvslam/core/thread_name.h"
 
 namespace drvslam {
 
 SideWorker::SideWorker(const char* name)
-    : thread_([this, name] {
-        NameCurrentThread(name);
+    : thread_([this, name = std::string(name)] {
+        NameCurrentThread(name.c_str());
         Loop();
       }) {}
 

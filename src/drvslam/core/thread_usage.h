@@ -24,18 +24,22 @@ struct ThreadUsage {
 
 // Every thread the process has now, from /proc/self/task, by CPU time (most first); the calling
 // thread is named `caller_name`. Threads that have ended are not listed. Empty where /proc is not
-// available (not Linux).
-std::vector<ThreadUsage> ReadThreadUsage(const std::string& caller_name);
+// available (not Linux) or cannot be read.
+std::vector<ThreadUsage> ReadThreadUsage(const std::string& caller_name) noexcept;
 
 // What each thread used between two readings: `now` less `earlier`, matched by thread id (a
-// thread that started in between counts from zero), by CPU time (most first).
+// thread that started in between counts from zero), by CPU time (most first). A figure unknown
+// at either reading is unknown in the result.
 std::vector<ThreadUsage> UsageSince(const std::vector<ThreadUsage>& earlier,
                                     std::vector<ThreadUsage> now);
 
-// Parses the text of /proc/<pid>/task/<tid>/schedstat ("cpu_ns wait_ns slices") and of its
-// status file (the nonvoluntary_ctxt_switches line) into `usage`. False when schedstat does not
-// hold two numbers.
+// Parsers of /proc/<pid>/task/<tid>/ files, for ReadThreadUsage:
+// schedstat ("cpu_ns wait_ns slices") into usage's cpu_s and runqueue_wait_s; false when it does
+// not hold two numbers or holds only zeros (a kernel that keeps no scheduler statistics).
 bool ParseThreadSchedstat(const std::string& schedstat, ThreadUsage* usage);
+// stat's utime + stime in seconds, for kernels without schedstat.
+std::optional<double> ParseCpuSecondsFromStat(const std::string& stat, long ticks_per_second);
+// status's nonvoluntary_ctxt_switches; -1 when absent.
 long ParseInvoluntarySwitches(const std::string& status);
 
 }  // namespace drvslam

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/thread_name.h"
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_octomap.h"
 #include "drvslam/dense/grid_export.h"
@@ -85,6 +86,7 @@ struct MapSnapshot {
 };
 
 MapSnapshot BuildSnapshot(DenseMapper* dense, GridOptions grid_options, bool with_grid) {
+  NameCurrentThread("drv-ros-map");  // runs on a std::async thread of its own
   DenseMapRays rays = dense->AssembleRays();
   MapSnapshot snapshot;
   const double resolution = dense->Options().octomap_resolution;

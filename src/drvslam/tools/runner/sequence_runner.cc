@@ -486,6 +486,7 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   for (const ThreadUsage& thread : summary.threads) {
     json["threads"].push_back(
         {{"name", thread.name},
+         {"id", thread.thread_id},
          {"cpu_s", thread.cpu_s},
          {"runqueue_wait_s", thread.runqueue_wait_s ? nlohmann::json(*thread.runqueue_wait_s)
                                                     : nlohmann::json(nullptr)},

@@ -148,8 +148,10 @@ struct RunSummary {
   double map_save_ms = 0.0;
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
-  // What each thread used from the first frame until the last one was tracked (before the
-  // shutdown drain); the calling thread is kTrackingThreadName. Empty off Linux.
+  // What each thread used from the start of the frame loop until the last frame was tracked
+  // (before the shutdown drain), for the threads still running then (decoding threads and the
+  // realtime camera thread have ended); the calling thread is kTrackingThreadName. Empty off
+  // Linux.
   std::vector<ThreadUsage> threads;
 };
 
@@ -178,7 +180,8 @@ RunSummary RunSequence(const RunOptions& options,
 // global_ba_ms, loops[{keyframe, loop_keyframe, timestamp, matches, correction_m,
 // correction_deg}]}), and map_file.{loaded (path or null), loaded_keyframes, loaded_points,
 // loaded_dense_points, load_ms, localization, saved (path or null), bytes, save_ms}), and
-// threads[{name, cpu_s, runqueue_wait_s (null when unknown), involuntary_switches}].
+// threads[{name, id, cpu_s, runqueue_wait_s (null when unknown), involuntary_switches (-1 when
+// unknown)}].
 void WriteStatsJson(const std::string& path, const RunSummary& summary);
 
 }  // namespace drvslam

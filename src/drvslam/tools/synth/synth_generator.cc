@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "drvslam/core/bounded_queue.h"
+#include "drvslam/core/thread_name.h"
 #include "drvslam/tools/synth/scenario.h"
 #include "drvslam/tools/synth/sequence_writer.h"
 #include "drvslam/tools/synth/synth_sequence.h"
@@ -56,6 +57,7 @@ SynthSummary GenerateSequence(const SynthOptions& options, const std::string& fo
   std::exception_ptr write_error;
   std::atomic<int> written{0};
   const auto write_frames = [&] {
+    NameCurrentThread("drv-synth-write");
     while (std::optional<EncodedFrame> frame = queue.Pop()) {
       try {
         writer.WriteFrame(frame->stamp, frame->bgr, frame->depth16, frame->mask16);
