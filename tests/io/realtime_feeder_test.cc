@@ -1,10 +1,12 @@
 // RealtimeFeeder's playback: frames decoded ahead when they fit the budget, loaded on the way
 // otherwise; every frame delivered in order to a consumer that keeps up; a frame that cannot be
-// read is reported after the frames before it, in both ways.
+// read is reported after the frames before it, in both ways; the feeder's threads record their
+// CPU as they end.
 #include "drvslam/io/realtime_feeder.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +14,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "drvslam/core/error.h"
@@ -84,6 +87,29 @@ TEST_F(RealtimeFeederTest, PreloadsWhenTheSequenceFitsTheBudget) {
   const std::vector<int> received = Play(RealtimeFeeder::kDefaultPreloadBytes, &preloaded);
   EXPECT_TRUE(preloaded);
   ExpectInOrderEndingWith(received, kFrames - 1);
+}
+
+TEST_F(RealtimeFeederTest, PlaybackAndDecodingThreadsRecordTheirUsageAsTheyEnd) {
+  const TumDataset dataset(dir_.string());
+  RealtimeFeeder feeder(dataset, kFrames, kRate, nullptr, RealtimeFeeder::kDefaultPreloadBytes);
+  while (feeder.Next()) {
+  }
+  feeder.Stop();
+  ASSERT_TRUE(feeder.Preloaded());
+  const std::vector<ThreadUsage> ended = feeder.EndedThreads();
+  std::size_t cameras = 0;
+  std::size_t decoders = 0;
+  for (const ThreadUsage& thread : ended) {
+    cameras += thread.name == "drv-camera";
+    decoders += thread.name == "drv-decode";
+    EXPECT_GE(thread.cpu_s, 0.0);
+  }
+#ifdef __linux__
+  for (const ThreadUsage& thread : ended) EXPECT_GT(thread.thread_id, 0);
+  EXPECT_EQ(cameras, 1u);
+  EXPECT_EQ(decoders, std::max(1u, std::thread::hardware_concurrency()));  // one per core
+#endif
+  EXPECT_EQ(ended.size(), cameras + decoders);
 }
 
 TEST_F(RealtimeFeederTest, LoadsDuringPlaybackWhenTheSequenceDoesNotFit) {

@@ -12,13 +12,13 @@
 #endif
 
 namespace drvslam {
-namespace {
-
 void SortByCpu(std::vector<ThreadUsage>* threads) {
   std::sort(threads->begin(), threads->end(), [](const ThreadUsage& a, const ThreadUsage& b) {
     return a.cpu_s != b.cpu_s ? a.cpu_s > b.cpu_s : a.thread_id < b.thread_id;
   });
 }
+
+namespace {
 
 #ifdef __linux__
 std::string ReadText(const std::filesystem::path& path) {
@@ -28,12 +28,28 @@ std::string ReadText(const std::filesystem::path& path) {
   return text.str();
 }
 
+// One thread's files under `task` (/proc/self/task/<tid> or /proc/thread-self); false when
+// they were empty or unreadable (a thread that ended while it was read).
+bool ReadTask(const std::filesystem::path& task, ThreadUsage* usage) {
+  std::string name = ReadText(task / "comm");
+  if (name.empty()) return false;
+  if (name.back() == '\n') name.pop_back();
+  usage->name = name;
+  if (!ParseThreadSchedstat(ReadText(task / "schedstat"), usage)) {
+    const std::optional<double> cpu =
+        ParseCpuSecondsFromStat(ReadText(task / "stat"), sysconf(_SC_CLK_TCK));
+    if (!cpu) return false;
+    usage->cpu_s = *cpu;
+  }
+  usage->involuntary_switches = ParseInvoluntarySwitches(ReadText(task / "status"));
+  return true;
+}
+
 // The threads of the process now; throws only what the standard library throws (bad_alloc).
 std::vector<ThreadUsage> ReadTasks(const std::string& caller_name) {
   namespace fs = std::filesystem;
   std::vector<ThreadUsage> threads;
   const long caller = static_cast<long>(syscall(SYS_gettid));
-  const long ticks_per_second = sysconf(_SC_CLK_TCK);
   std::error_code error;
   fs::directory_iterator task("/proc/self/task", error);
   for (; !error && task != fs::directory_iterator(); task.increment(error)) {
@@ -42,18 +58,8 @@ std::vector<ThreadUsage> ReadTasks(const std::string& caller_name) {
     char* end = nullptr;
     usage.thread_id = std::strtol(id.c_str(), &end, 10);
     if (end == id.c_str() || *end != '\0') continue;
-    // A thread that ends while it is read leaves empty files: it is left out.
-    std::string name = ReadText(task->path() / "comm");
-    if (name.empty()) continue;
-    if (name.back() == '\n') name.pop_back();
-    usage.name = usage.thread_id == caller ? caller_name : name;
-    if (!ParseThreadSchedstat(ReadText(task->path() / "schedstat"), &usage)) {
-      const std::optional<double> cpu =
-          ParseCpuSecondsFromStat(ReadText(task->path() / "stat"), ticks_per_second);
-      if (!cpu) continue;
-      usage.cpu_s = *cpu;
-    }
-    usage.involuntary_switches = ParseInvoluntarySwitches(ReadText(task->path() / "status"));
+    if (!ReadTask(task->path(), &usage)) continue;
+    if (usage.thread_id == caller) usage.name = caller_name;
     threads.push_back(std::move(usage));
   }
   return threads;
@@ -125,6 +131,19 @@ std::vector<ThreadUsage> UsageSince(const std::vector<ThreadUsage>& earlier,
   }
   SortByCpu(&now);
   return now;
+}
+
+ThreadUsage ReadCallingThreadUsage() noexcept {
+  ThreadUsage usage;
+#ifdef __linux__
+  try {
+    usage.thread_id = static_cast<long>(syscall(SYS_gettid));
+    ReadTask("/proc/thread-self", &usage);
+  } catch (...) {
+    // Figures for a report: what was read is kept.
+  }
+#endif
+  return usage;
 }
 
 std::vector<ThreadUsage> ReadThreadUsage(const std::string& caller_name) noexcept {

@@ -27,6 +27,14 @@ struct ThreadUsage {
 // available (not Linux) or cannot be read.
 std::vector<ThreadUsage> ReadThreadUsage(const std::string& caller_name) noexcept;
 
+// The calling thread's usage so far, named by its thread name; for a thread to record just
+// before it ends (its /proc entry goes with it). cpu_s 0 and nothing else known where /proc
+// cannot be read.
+ThreadUsage ReadCallingThreadUsage() noexcept;
+
+// Orders by CPU time, most first (ties by thread id).
+void SortByCpu(std::vector<ThreadUsage>* threads);
+
 // What each thread used between two readings: `now` less `earlier`, matched by thread id (a
 // thread that started in between counts from zero), by CPU time (most first). A figure unknown
 // at either reading is unknown in the result.

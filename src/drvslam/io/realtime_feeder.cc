@@ -17,6 +17,7 @@ RealtimeFeeder::RealtimeFeeder(const TumDataset& dataset, std::size_t count, dou
   thread_ = std::thread([this, count, rate, preload_bytes] {
     NameCurrentThread("drv-camera");
     Play(count, rate, preload_bytes);
+    RecordEndedThread();
   });
 }
 
@@ -63,6 +64,7 @@ bool RealtimeFeeder::Preload(std::size_t count, std::size_t budget) {
           preload_errors_[i] = std::current_exception();
         }
       }
+      RecordEndedThread();
     });
   }
   for (std::thread& t : threads) t.join();
@@ -163,6 +165,17 @@ void RealtimeFeeder::Play(std::size_t count, double rate, std::size_t preload_by
     ++i;
   }
   slot_.Close();
+}
+
+void RealtimeFeeder::RecordEndedThread() {
+  ThreadUsage usage = ReadCallingThreadUsage();
+  std::lock_guard<std::mutex> lock(mutex_);
+  ended_threads_.push_back(std::move(usage));
+}
+
+std::vector<ThreadUsage> RealtimeFeeder::EndedThreads() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return ended_threads_;
 }
 
 bool RealtimeFeeder::Preloaded() const { return preloaded_flag_; }

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "drvslam/core/latest_frame_slot.h"
+#include "drvslam/core/thread_usage.h"
 #include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/tum_dataset.h"
 
@@ -65,6 +66,9 @@ class RealtimeFeeder {
   // Whether the frames were decoded before the clock started, and how long that took (s).
   bool Preloaded() const;
   double PreloadSeconds() const;
+  // The CPU the playback thread (drv-camera) and the decoding threads (drv-decode) used, each
+  // recorded as it ended (their /proc entries end with them); complete after Stop.
+  std::vector<ThreadUsage> EndedThreads() const;
 
  private:
   void Play(std::size_t count, double rate, std::size_t preload_bytes);
@@ -75,9 +79,13 @@ class RealtimeFeeder {
   const TumDataset& dataset_;
   FrameRejections* const rejections_;
   LatestFrameSlot<RgbdFrame> slot_;
-  mutable std::mutex mutex_;  // guards stopping_, error_, max_lag_ms_ and skipped_loading_
+  // Records the calling thread's usage in ended_threads_; the last thing a thread does.
+  void RecordEndedThread();
+  mutable std::mutex mutex_;  // guards stopping_, error_, max_lag_ms_, skipped_loading_
+                              // and ended_threads_
   std::condition_variable stop_requested_;
   bool stopping_ = false;
+  std::vector<ThreadUsage> ended_threads_;
   std::exception_ptr error_;
   double max_lag_ms_ = 0.0;
   std::size_t skipped_loading_ = 0;

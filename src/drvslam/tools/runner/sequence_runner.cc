@@ -106,7 +106,12 @@ void WriteSparseMap(const Map& map, const std::string& path) {
 void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point started,
                   const std::vector<ThreadUsage>& threads_at_start, const std::string& save_map,
                   const GridOptions& grid, RunSummary* summary) {
-  summary->threads = UsageSince(threads_at_start, ReadThreadUsage(kTrackingThreadName));
+  // summary->threads holds the threads that ended before (the feeder's), recorded by themselves.
+  std::vector<ThreadUsage> threads =
+      UsageSince(threads_at_start, ReadThreadUsage(kTrackingThreadName));
+  threads.insert(threads.end(), summary->threads.begin(), summary->threads.end());
+  SortByCpu(&threads);
+  summary->threads = std::move(threads);
   // Local mapping finishes its queue first: the trajectories then include its corrections.
   system.Shutdown();
   summary->wall_s = std::chrono::duration<double>(Clock::now() - started).count();
@@ -289,6 +294,7 @@ RunSummary RunSequence(const RunOptions& options,
     summary.frames_skipped_loading = feeder->SkippedWhileLoading();
     summary.max_arrival_lag_ms = feeder->MaxArrivalLagMs();
     summary.decode_ahead_s = feeder->Preloaded() ? feeder->PreloadSeconds() : 0.0;
+    summary.threads = feeder->EndedThreads();  // WriteOutputs adds the threads still running
     feeder.reset();
   };
   // The frame being read or tracked, for the message of an unexpected failure.

@@ -149,9 +149,8 @@ struct RunSummary {
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
   // What each thread used from the start of the frame loop until the last frame was tracked
-  // (before the shutdown drain), for the threads still running then (decoding threads and the
-  // realtime camera thread have ended); the calling thread is kTrackingThreadName. Empty off
-  // Linux.
+  // (before the shutdown drain); the realtime camera and decoding threads, which end before,
+  // until they ended. The calling thread is kTrackingThreadName. Empty off Linux.
   std::vector<ThreadUsage> threads;
 };
 
