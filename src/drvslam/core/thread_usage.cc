@@ -12,6 +12,7 @@
 #endif
 
 namespace drvslam {
+
 void SortByCpu(std::vector<ThreadUsage>* threads) {
   std::sort(threads->begin(), threads->end(), [](const ThreadUsage& a, const ThreadUsage& b) {
     return a.cpu_s != b.cpu_s ? a.cpu_s > b.cpu_s : a.thread_id < b.thread_id;

@@ -75,12 +75,12 @@ class RealtimeFeeder {
   // Decodes frames [0, count) into preloaded_ when they fit in `budget` bytes; false otherwise.
   bool Preload(std::size_t count, std::size_t budget);
   RgbdFrame Load(std::size_t i);
+  // Records the calling thread's usage in ended_threads_; the last thing a thread does.
+  void RecordEndedThread();
 
   const TumDataset& dataset_;
   FrameRejections* const rejections_;
   LatestFrameSlot<RgbdFrame> slot_;
-  // Records the calling thread's usage in ended_threads_; the last thing a thread does.
-  void RecordEndedThread();
   mutable std::mutex mutex_;  // guards stopping_, error_, max_lag_ms_, skipped_loading_
                               // and ended_threads_
   std::condition_variable stop_requested_;
