@@ -92,6 +92,8 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   std::printf("lost:        %zu frames after initialization, %d relocalizations (%d attempts)\n",
               s.frames_lost, s.relocalizations, s.relocalization_attempts);
   std::printf("map points:  %zu\n", s.map_points);
+  std::printf("readout:     %.1f ms rolling shutter (%d estimate updates)\n", s.readout_ms,
+              s.readout_updates);
   for (const auto& [stage, timing] : s.stages) {
     std::printf("%-12s median %.2f ms, p95 %.2f ms\n", (stage + ":").c_str(), timing.median_ms,
                 timing.p95_ms);

@@ -3,7 +3,8 @@
 // extraction + tracking, with the place-recognition vocabulary it matches keyframes with; no
 // local mapping, no loop closing; second argument 0) and the full pipeline with local mapping
 // and loop closing run inline after each keyframe (1). Building the System (vocabulary load) and
-// destroying it are not timed. Reports the mean per frame; stats.json of `drvslam run` gives
+// destroying it are not timed. Third argument: rolling-shutter correction and readout estimation
+// off (0) or on (1, the default; tracking/rolling_shutter.h). Reports the mean per frame; stats.json of `drvslam run` gives
 // median/p95.
 #include <benchmark/benchmark.h>
 
@@ -55,11 +56,13 @@ void BM_TrackStaticSequence(benchmark::State& state) {
   const bool full_pipeline = state.range(1) != 0;
   options.mapping.enabled = full_pipeline;
   options.loop.enabled = full_pipeline;
+  TrackerOptions tracker_options;
+  tracker_options.estimate_readout = state.range(2) != 0;
   long loop_keyframes = 0;
   long local_bas = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    auto system = std::make_unique<System>(settings, TrackerOptions{}, options);
+    auto system = std::make_unique<System>(settings, tracker_options, options);
     state.ResumeTiming();
     for (std::size_t i = 0; i < frames.bgr.size(); ++i) {
       system->TrackRGBD(frames.bgr[i], frames.depth[i], frames.stamps[i]);
@@ -83,8 +86,8 @@ void BM_TrackStaticSequence(benchmark::State& state) {
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_TrackStaticSequence)
-    ->ArgsProduct({{1000, 2000}, {0, 1}})
-    ->ArgNames({"features", "mapping"})
+    ->ArgsProduct({{1000, 2000}, {0, 1}, {0, 1}})
+    ->ArgNames({"features", "mapping", "rolling_shutter"})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

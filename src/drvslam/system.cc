@@ -425,6 +425,8 @@ SystemStats System::Impl::Stats() const {
   stats.keyframes = map.KeyFrameCount();
   stats.map_points = map.MapPointCount();
   stats.reference_fallbacks = tracker.ReferenceFallbacks();
+  stats.readout_ms = tracker.ReadoutSeconds() * 1e3;
+  stats.readout_updates = tracker.ReadoutUpdates();
   stats.frames_lost = tracker.Recorder().LostAfterInitialization();
   stats.map_resets = tracker.Recorder().MapResets();
   stats.frames_discarded = tracker.Recorder().DiscardedCount();

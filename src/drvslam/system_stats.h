@@ -21,6 +21,10 @@ struct SystemStats {
   std::size_t keyframes = 0;
   std::size_t map_points = 0;
   int reference_fallbacks = 0;
+  // The rolling-shutter readout tracking ended the run with (Tracking.readoutTime, refined when
+  // Tracking.estimateReadout is on) and how many times the estimate moved.
+  double readout_ms = 0.0;
+  int readout_updates = 0;
   std::size_t frames_lost = 0;  // frames after initialization that were not tracked
   // Tracking.resetWhenLost: maps started anew, and the frames tracked in the maps they
   // discarded (not in the trajectory, whose world frame is the final map's; not in `tracked`).

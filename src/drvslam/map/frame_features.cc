@@ -84,6 +84,37 @@ void FrameFeatures::SetDepth(std::size_t i, float depth) {
   right_u_[i] = static_cast<float>(keypoints_un_[i].pt.x - geometry_->Bf() / depth);
 }
 
+FrameFeatures FrameFeatures::RollingShutterCorrected(const Vector6d& twist_per_second,
+                                                     double readout_s) const {
+  FrameFeatures corrected = *this;
+  const PinholeCamera& camera = geometry_->camera;
+  const double height = camera.Options().height;
+  const Eigen::Vector3d translation_rate = twist_per_second.head<3>();
+  const Eigen::Vector3d rotation_rate = twist_per_second.tail<3>();
+  for (std::size_t i = 0; i < keypoints_.size(); ++i) {
+    // Seen at `seconds` after the middle row: step the point back along its velocity (first
+    // order; without depth only the rotation moves a ray).
+    const double seconds = (keypoints_[i].pt.y / height - 0.5) * readout_s;
+    cv::KeyPoint& keypoint = corrected.keypoints_un_[i];
+    const bool has_depth = depth_[i] > 0;
+    const Eigen::Vector3d ray((keypoint.pt.x - camera.Cx()) / camera.Fx(),
+                              (keypoint.pt.y - camera.Cy()) / camera.Fy(), 1.0);
+    const Eigen::Vector3d point = has_depth ? Eigen::Vector3d(ray * depth_[i]) : ray;
+    Eigen::Vector3d velocity = rotation_rate.cross(point);
+    if (has_depth) velocity += translation_rate;
+    const Eigen::Vector3d moved = point - seconds * velocity;
+    if (!(moved.z() > 0)) continue;
+    keypoint.pt.x = static_cast<float>(camera.Fx() * moved.x() / moved.z() + camera.Cx());
+    keypoint.pt.y = static_cast<float>(camera.Fy() * moved.y() / moved.z() + camera.Cy());
+    if (has_depth) {
+      corrected.depth_[i] = static_cast<float>(moved.z());
+      corrected.right_u_[i] = static_cast<float>(keypoint.pt.x - geometry_->Bf() / moved.z());
+    }
+  }
+  corrected.BuildGrid();
+  return corrected;
+}
+
 void FrameFeatures::BuildGrid() {
   const std::size_t n = keypoints_.size();
   cell_width_inv_ = kGridCols / (geometry_->max_x - geometry_->min_x);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "drvslam/core/camera.h"
+#include "drvslam/core/se3.h"
 #include "drvslam/map/scale_pyramid.h"
 
 namespace drvslam {
@@ -40,6 +41,12 @@ class FrameFeatures {
                 cv::Mat descriptors, const std::vector<float>& keypoint_depth);
 
   std::size_t Size() const { return keypoints_un_.size(); }
+
+  // A copy with each undistorted keypoint (and its depth) moved to where the camera would have
+  // seen it at the middle row's time: a rolling-shutter camera reads its rows out over
+  // readout_s seconds (top to bottom; negative: bottom to top) while it moves with
+  // twist_per_second (rho, phi of T_later_earlier per second). First order in the motion.
+  FrameFeatures RollingShutterCorrected(const Vector6d& twist_per_second, double readout_s) const;
   const SensorGeometry& Geometry() const { return *geometry_; }
   const std::shared_ptr<const SensorGeometry>& GeometryPtr() const { return geometry_; }
   const std::vector<cv::KeyPoint>& Keypoints() const { return keypoints_; }

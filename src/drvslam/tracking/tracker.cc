@@ -42,7 +42,8 @@ Tracker::Tracker(Map& map, const TrackerOptions& options, double fps)
       options_(options),
       max_frames_between_keyframes_(options.max_frames_between_keyframes > 0
                                         ? options.max_frames_between_keyframes
-                                        : std::max(1, static_cast<int>(std::lround(fps)))) {
+                                        : std::max(1, static_cast<int>(std::lround(fps)))),
+      rolling_shutter_(options.readout_time_s, options.estimate_readout) {
   options_.Check();
 }
 
@@ -73,6 +74,13 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
   }
 
   CheckReplacedInLastFrame();
+  if (state_ == TrackingState::kOk) {
+    if (auto corrected = rolling_shutter_.Correct(current_->Features())) {
+      const long id = current_->Id();
+      const double timestamp = current_->Timestamp();
+      current_.emplace(id, timestamp, std::move(corrected));
+    }
+  }
   bool ok = false;
   bool relocalized = false;
   if (state_ == TrackingState::kOk) {
@@ -108,7 +116,7 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
   if (!ok) {
     spdlog::debug("frame {} ({:.6f}): tracking lost", current_->Id(), current_->Timestamp());
     recorder_.AddLost(current_->Timestamp());
-    velocity_.reset();
+    ForgetMotion();
     if (options_.reset_when_lost) {
       // Applied outside the caller's update lock (ApplyPendingReset), before the next frame.
       reset_pending_ = true;
@@ -125,11 +133,13 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
   if (relocalized) {
     // The last tracked frame is from before the loss: the motion model starts afresh.
     ++relocalizations_;
-    velocity_.reset();
+    ForgetMotion();
     spdlog::debug("frame {} ({:.6f}): relocalized against keyframe {}", current_->Id(),
                   current_->Timestamp(), reference_keyframe_ ? reference_keyframe_->Id() : -1);
   } else {
     velocity_ = current_->Pose() * last_frame_->Pose().Inverse();
+    rolling_shutter_.Observe(*current_);
+    rolling_shutter_.AddStep(*velocity_, current_->Timestamp() - last_frame_->Timestamp());
   }
   result.inliers = matches_inliers_;
   // No keyframe is made from a pose that may be a repeat of the scene away.
@@ -179,7 +189,7 @@ bool Tracker::Initialize() {
   reference_keyframe_ = keyframe;
   last_keyframe_ = keyframe;
   last_keyframe_frame_id_ = current_->Id();
-  velocity_.reset();
+  ForgetMotion();
   last_evidence_.reset();
   return true;
 }
@@ -389,7 +399,7 @@ void Tracker::ApplyPendingReset() {
   reference_keyframe_.reset();
   last_keyframe_.reset();
   last_frame_.reset();
-  velocity_.reset();
+  ForgetMotion();
   local_points_.clear();
 }
 

@@ -17,6 +17,7 @@
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/local_map.h"
 #include "drvslam/tracking/localization_check.h"
+#include "drvslam/tracking/rolling_shutter.h"
 #include "drvslam/tracking/tracker_options.h"
 #include "drvslam/tracking/tracking_state.h"
 #include "drvslam/tracking/trajectory_recorder.h"
@@ -89,6 +90,9 @@ class Tracker {
   const std::optional<Frame>& LastFrame() const { return last_frame_; }
   // Frames for which the motion model failed and the reference keyframe was used.
   int ReferenceFallbacks() const { return reference_fallbacks_; }
+  // The rolling-shutter readout tracking uses now (seconds; estimated when enabled).
+  double ReadoutSeconds() const { return rolling_shutter_.ReadoutSeconds(); }
+  int ReadoutUpdates() const { return rolling_shutter_.Updates(); }
   // Times tracking was lost and found again: by relocalization, or without place recognition by
   // the retry against the last reference keyframe.
   int Relocalizations() const { return relocalizations_; }
@@ -132,6 +136,11 @@ class Tracker {
   std::optional<Frame> current_;
   std::optional<Frame> last_frame_;
   std::optional<SE3> velocity_;  // T_current_last of the last tracked step
+  RollingShutter rolling_shutter_;
+  void ForgetMotion() {
+    velocity_.reset();
+    rolling_shutter_.Forget();
+  }
   std::shared_ptr<KeyFrame> reference_keyframe_;
   std::shared_ptr<KeyFrame> last_keyframe_;
   long last_keyframe_frame_id_ = 0;

@@ -24,7 +24,13 @@ const OptionTable<TrackerOptions>& TrackerOptionTable() {
               "Match the reference keyframe by bag of words (1) or brute force (0).")
         .Int("realtimeQueuedKeyframes", &T::realtime_queued_keyframes, Bounds::In(0, 3),
              "--realtime: keyframes may be added while local mapping is busy until this many "
-             "wait (0 = only when it is idle; other runs: 3).");
+             "wait (0 = only when it is idle; other runs: 3).")
+        .Real("readoutTime", &T::readout_time_s, Bounds::In(-0.1, 0.1),
+              "Rolling-shutter readout, first image row to last, in seconds (negative: bottom "
+              "to top; 0 = global shutter); the start when estimateReadout is on.")
+        .Bool("estimateReadout", &T::estimate_readout,
+              "Estimate the rolling-shutter readout from the tracked poses' reprojection "
+              "residuals (1) or keep readoutTime (0).");
     return t;
   }();
   return table;

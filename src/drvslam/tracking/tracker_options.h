@@ -30,6 +30,12 @@ struct TrackerOptions {
   // alternated quiet pairs skipped 4 frames in all against 12, and beside stress-ng --cpu 2, 4
   // pairs skipped 19-28 against 26-56 with an ATE of 0.24-0.28 against 0.25-0.60 cm.
   int realtime_queued_keyframes = 0;
+  // Tracking.readoutTime: a rolling-shutter camera's readout, first image row to last, in
+  // seconds (negative: read bottom to top); 0 = a global shutter. The starting value when
+  // Tracking.estimateReadout is on (tracking/rolling_shutter.h).
+  double readout_time_s = 0.0;
+  // Tracking.estimateReadout: refine the readout from the tracked poses' reprojection residuals.
+  bool estimate_readout = true;
 
   void Check() const;  // throws Error naming the bad key
 };
@@ -39,7 +45,8 @@ const OptionTable<TrackerOptions>& TrackerOptionTable();
 
 // Reads Tracking.minInitialPoints, Tracking.maxFramesBetweenKeyframes,
 // Tracking.newPointsPerKeyframe, Tracking.minInliers, Tracking.resetWhenLost and
-// Tracking.bowReferenceMatching and Tracking.realtimeQueuedKeyframes.
+// Tracking.bowReferenceMatching, Tracking.realtimeQueuedKeyframes, Tracking.readoutTime and
+// Tracking.estimateReadout.
 TrackerOptions LoadTrackerOptions(const SettingsFile& file);
 
 }  // namespace drvslam

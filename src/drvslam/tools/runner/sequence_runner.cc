@@ -378,6 +378,8 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["keyframes"] = s.keyframes;
   json["map_points"] = s.map_points;
   json["reference_fallbacks"] = s.reference_fallbacks;
+  json["readout_ms"] = s.readout_ms;
+  json["readout_updates"] = s.readout_updates;
   json["frames_lost"] = s.frames_lost;
   json["map_resets"] = s.map_resets;
   json["frames_discarded"] = s.frames_discarded;

@@ -1,0 +1,115 @@
+#include "drvslam/tracking/rolling_shutter.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "drvslam/map/frame.h"
+#include "drvslam/map/map_point.h"
+
+namespace drvslam {
+
+namespace {
+
+// The keypoint's time relative to the middle row, per second of readout: -0.5 at the top row.
+double RowTime(const cv::KeyPoint& raw_keypoint, double image_height) {
+  return raw_keypoint.pt.y / image_height - 0.5;
+}
+
+// Velocity of a camera-frame point under the camera's twist per second (rho, phi).
+Eigen::Vector3d PointVelocity(const Vector6d& twist, const Eigen::Vector3d& point) {
+  return twist.tail<3>().cross(point) + twist.head<3>();
+}
+
+}  // namespace
+
+std::optional<double> ReadoutStep(const ReadoutEvidence& evidence, double min_sigmas) {
+  if (evidence.observations < 10 || !(evidence.motion_squared > 0)) return std::nullopt;
+  const double step = evidence.residual_dot_motion / evidence.motion_squared;
+  // Noise per residual component left after the fit, and the step's standard error.
+  const double left =
+      std::max(0.0, evidence.residual_squared - step * evidence.residual_dot_motion);
+  const double noise_variance = left / (2.0 * static_cast<double>(evidence.observations) - 1.0);
+  const double standard_error = std::sqrt(noise_variance / evidence.motion_squared);
+  if (!std::isfinite(step) || std::abs(step) <= min_sigmas * standard_error) return std::nullopt;
+  return step;
+}
+
+RollingShutter::RollingShutter(double readout_s, bool estimate)
+    : readout_s_(readout_s), estimate_(estimate) {}
+
+void RollingShutter::AddStep(const SE3& T_current_last, double seconds) {
+  if (!(seconds > 0)) return;
+  steps_.emplace_back(T_current_last, seconds);
+  while (steps_.size() > static_cast<std::size_t>(kStepsInMotion)) steps_.pop_front();
+}
+
+void RollingShutter::Forget() {
+  steps_.clear();
+  used_twist_.reset();
+}
+
+std::optional<Vector6d> RollingShutter::TwistPerSecond() const {
+  if (steps_.empty()) return std::nullopt;
+  SE3 total;
+  double seconds = 0.0;
+  for (const auto& [step, dt] : steps_) {
+    total = step * total;
+    seconds += dt;
+  }
+  return Vector6d(total.Log() / seconds);
+}
+
+std::shared_ptr<const FrameFeatures> RollingShutter::Correct(const FrameFeatures& features) {
+  used_twist_.reset();
+  if (readout_s_ == 0.0 && !estimate_) return nullptr;
+  used_twist_ = TwistPerSecond();
+  if (!used_twist_) return nullptr;
+  return std::make_shared<const FrameFeatures>(
+      features.RollingShutterCorrected(*used_twist_, readout_s_));
+}
+
+void RollingShutter::Observe(const Frame& frame) {
+  if (!estimate_ || !used_twist_ || !frame.HasPose()) return;
+  const FrameFeatures& features = frame.Features();
+  const PinholeCamera& camera = features.Geometry().camera;
+  const ScalePyramid& pyramid = features.Geometry().pyramid;
+  const double height = camera.Options().height;
+  const Eigen::Matrix3d R_cw = frame.Pose().Rotation();
+  const Eigen::Vector3d& t_cw = frame.Pose().Translation();
+  // The pose was solved with the current readout and has taken up part of any readout error, so
+  // each step is short of the whole error; the steps repeat until the residuals show none.
+  for (std::size_t i = 0; i < frame.Size(); ++i) {
+    const std::shared_ptr<MapPoint>& point = frame.map_points[i];
+    if (!point || frame.outlier[i]) continue;
+    const Eigen::Vector3d X = R_cw * point->Position() + t_cw;
+    if (!(X.z() > 0)) continue;
+    const double inv_z = 1.0 / X.z();
+    const cv::KeyPoint& observed = features.KeypointsUn()[i];
+    const Eigen::Vector2d residual(observed.pt.x - (camera.Fx() * X.x() * inv_z + camera.Cx()),
+                                   observed.pt.y - (camera.Fy() * X.y() * inv_z + camera.Cy()));
+    // Image motion per second of readout: the projection's derivative along the point's
+    // velocity, scaled by the row's time.
+    const Eigen::Vector3d V = PointVelocity(*used_twist_, X);
+    const double row_time = RowTime(features.Keypoints()[i], height);
+    const Eigen::Vector2d motion(row_time * camera.Fx() * (V.x() - X.x() * V.z() * inv_z) * inv_z,
+                                 row_time * camera.Fy() * (V.y() - X.y() * V.z() * inv_z) * inv_z);
+    const double weight = pyramid.inv_sigma2[static_cast<std::size_t>(observed.octave)];
+    evidence_.residual_dot_motion += weight * residual.dot(motion);
+    evidence_.motion_squared += weight * motion.squaredNorm();
+    evidence_.residual_squared += weight * residual.squaredNorm();
+    ++evidence_.observations;
+  }
+  if (++frames_in_evidence_ < kFramesPerUpdate) return;
+  if (const std::optional<double> step = ReadoutStep(evidence_, kMinSigmas)) {
+    readout_s_ = std::clamp(readout_s_ + *step, -kMaxReadoutS, kMaxReadoutS);
+    ++updates_;
+    spdlog::debug("rolling shutter: readout {:.2f} ms (step {:+.2f} ms over {} residuals)",
+                  readout_s_ * 1e3, *step * 1e3, evidence_.observations);
+  }
+  evidence_ = ReadoutEvidence();
+  frames_in_evidence_ = 0;
+}
+
+}  // namespace drvslam
