@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -315,6 +316,55 @@ TEST(RollingShutterTest, FramesAfterForgetAreNotEvidence) {
   }
   EXPECT_EQ(shutter.Updates(), 0);
   EXPECT_EQ(shutter.ReadoutSeconds(), 0.0);
+}
+
+TEST(RollingShutterTest, ForgetDropsTheEvidenceGatheredSoFar) {
+  // 29 frames of evidence, then a loss: the next update needs 30 new frames.
+  RollingShutter shutter(0.0, true);
+  std::mt19937 rng(9);
+  Track(shutter, kTrueReadout, 0.0, RollingShutter::kFramesPerUpdate - 1, rng);
+  shutter.Forget();
+  Track(shutter, kTrueReadout, 0.0, 1, rng);
+  EXPECT_EQ(shutter.Updates(), 0);
+  Track(shutter, kTrueReadout, 0.0, RollingShutter::kFramesPerUpdate - 1, rng);
+  EXPECT_EQ(shutter.Updates(), 1);
+}
+
+TEST(FrameFeaturesMapFileTest, CorrectedKeypointsAreSavedWithTheLensDistortionPutBack) {
+  CameraOptions options;  // the Bonn Xtion's published distortion
+  options.fx = options.fy = 540.0;
+  options.cx = 316.0;
+  options.cy = 238.0;
+  options.k1 = 0.04;
+  options.k2 = -0.1;
+  options.width = 640;
+  options.height = 480;
+  options.bf = kBf;
+  const auto geometry = std::make_shared<SensorGeometry>(options, ScalePyramid(), 3.0);
+  std::vector<cv::KeyPoint> raw;
+  std::vector<float> depth;
+  for (int i = 0; i < 40; ++i) {
+    raw.emplace_back(cv::Point2f(15.f + 15.f * i, 10.f + 11.5f * i), 7.f);
+    depth.push_back(1.0f + 0.05f * static_cast<float>(i));
+  }
+  const FrameFeatures features(geometry, raw, cv::Mat(40, 32, CV_8U, cv::Scalar(0)), depth);
+  // Uncorrected: exactly as extracted.
+  const std::vector<cv::KeyPoint> as_extracted = features.KeypointsForMapFile();
+  for (std::size_t i = 0; i < raw.size(); ++i) EXPECT_EQ(as_extracted[i].pt, raw[i].pt);
+  // Corrected: undistorting what is saved gives the corrected positions tracking used.
+  const FrameFeatures corrected = features.RollingShutterCorrected(Moving(), kTrueReadout);
+  const std::vector<cv::KeyPoint> saved = corrected.KeypointsForMapFile();
+  std::vector<cv::Point2f> saved_pixels;
+  for (const cv::KeyPoint& keypoint : saved) saved_pixels.push_back(keypoint.pt);
+  const std::vector<cv::Point2f> loaded = geometry->camera.Undistort(saved_pixels);
+  double moved_most = 0.0;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const cv::Point2f target = corrected.KeypointsUn()[i].pt;
+    EXPECT_NEAR(loaded[i].x, target.x, 0.01) << i;
+    EXPECT_NEAR(loaded[i].y, target.y, 0.01) << i;
+    moved_most = std::max(moved_most, static_cast<double>(cv::norm(saved[i].pt - raw[i].pt)));
+  }
+  EXPECT_GT(moved_most, 0.5);  // the correction did move them, so the check can fail
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/calib3d.hpp>
 
 #include "drvslam/core/error.h"
 
@@ -111,8 +112,27 @@ FrameFeatures FrameFeatures::RollingShutterCorrected(const Vector6d& twist_per_s
       corrected.right_u_[i] = static_cast<float>(keypoint.pt.x - geometry_->Bf() / moved.z());
     }
   }
+  corrected.readout_corrected_ = corrected.readout_corrected_ || readout_s != 0.0;
   corrected.BuildGrid();
   return corrected;
+}
+
+std::vector<cv::KeyPoint> FrameFeatures::KeypointsForMapFile() const {
+  if (!readout_corrected_) return keypoints_;
+  std::vector<cv::KeyPoint> keypoints = keypoints_un_;
+  const PinholeCamera& camera = geometry_->camera;
+  if (!camera.Options().HasDistortion() || keypoints.empty()) return keypoints;
+  std::vector<cv::Point3f> rays;
+  rays.reserve(keypoints.size());
+  for (const cv::KeyPoint& keypoint : keypoints) {
+    rays.emplace_back(static_cast<float>((keypoint.pt.x - camera.Cx()) / camera.Fx()),
+                      static_cast<float>((keypoint.pt.y - camera.Cy()) / camera.Fy()), 1.f);
+  }
+  std::vector<cv::Point2f> distorted;
+  cv::projectPoints(rays, cv::Vec3d::zeros(), cv::Vec3d::zeros(), camera.K(),
+                    camera.DistortionCoeffs(), distorted);
+  for (std::size_t i = 0; i < keypoints.size(); ++i) keypoints[i].pt = distorted[i];
+  return keypoints;
 }
 
 void FrameFeatures::BuildGrid() {

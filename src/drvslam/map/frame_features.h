@@ -47,6 +47,10 @@ class FrameFeatures {
   // readout_s seconds (top to bottom; negative: bottom to top) while it moves with
   // twist_per_second (rho, phi of T_later_earlier per second). First order in the motion.
   FrameFeatures RollingShutterCorrected(const Vector6d& twist_per_second, double readout_s) const;
+  // The keypoints in the camera's (distorted) pixels for a map file: as extracted, or after a
+  // rolling-shutter correction the corrected positions with the lens distortion put back, so a
+  // loaded keyframe has the positions tracking used.
+  std::vector<cv::KeyPoint> KeypointsForMapFile() const;
   const SensorGeometry& Geometry() const { return *geometry_; }
   const std::shared_ptr<const SensorGeometry>& GeometryPtr() const { return geometry_; }
   const std::vector<cv::KeyPoint>& Keypoints() const { return keypoints_; }
@@ -76,6 +80,7 @@ class FrameFeatures {
   cv::Mat descriptors_;
   std::vector<float> depth_;
   std::vector<float> right_u_;
+  bool readout_corrected_ = false;              // keypoints_un_ moved by RollingShutterCorrected
   std::vector<std::vector<std::size_t>> grid_;  // row-major kGridRows x kGridCols
   double cell_width_inv_, cell_height_inv_;
 };

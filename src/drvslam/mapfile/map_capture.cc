@@ -25,7 +25,7 @@ void CaptureMap(Map& map, MapFileContents* contents) {
     record.timestamp = keyframe->Timestamp();
     record.T_cw = keyframe->Pose();
     const FrameFeatures& features = keyframe->Features();
-    record.keypoints = features.Keypoints();
+    record.keypoints = features.KeypointsForMapFile();
     record.descriptors = features.Descriptors();
     record.depth.resize(features.Size());
     for (std::size_t i = 0; i < features.Size(); ++i) {

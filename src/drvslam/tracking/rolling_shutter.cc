@@ -48,6 +48,9 @@ void RollingShutter::AddStep(const SE3& T_current_last, double seconds) {
 void RollingShutter::Forget() {
   steps_.clear();
   used_twist_.reset();
+  // Residuals gathered before a loss or a reset may come from poses that were given up.
+  evidence_ = ReadoutEvidence();
+  frames_in_evidence_ = 0;
 }
 
 std::optional<Vector6d> RollingShutter::TwistPerSecond() const {
@@ -65,7 +68,8 @@ std::shared_ptr<const FrameFeatures> RollingShutter::Correct(const FrameFeatures
   used_twist_.reset();
   if (readout_s_ == 0.0 && !estimate_) return nullptr;
   used_twist_ = TwistPerSecond();
-  if (!used_twist_) return nullptr;
+  // With no readout yet there is nothing to move; the motion is kept for Observe.
+  if (!used_twist_ || readout_s_ == 0.0) return nullptr;
   return std::make_shared<const FrameFeatures>(
       features.RollingShutterCorrected(*used_twist_, readout_s_));
 }
@@ -82,7 +86,9 @@ void RollingShutter::Observe(const Frame& frame) {
   // each step is short of the whole error; the steps repeat until the residuals show none.
   for (std::size_t i = 0; i < frame.Size(); ++i) {
     const std::shared_ptr<MapPoint>& point = frame.map_points[i];
-    if (!point || frame.outlier[i]) continue;
+    // A keypoint without depth was only rotated back (its distance is unknown), so the
+    // residual model, which moves the point with the full motion, does not hold for it.
+    if (!point || frame.outlier[i] || !(features.Depth(i) > 0)) continue;
     const Eigen::Vector3d X = R_cw * point->Position() + t_cw;
     if (!(X.z() > 0)) continue;
     const double inv_z = 1.0 / X.z();

@@ -5,7 +5,7 @@
 // keypoints are moved to where the camera would have seen them at the middle row's time (first
 // order in the camera's motion over its last tracked steps). The readout time itself can be
 // estimated from the tracked poses' reprojection residuals, so neither ground truth nor a
-// datasheet is needed: a global-shutter camera's estimate stays at zero. docs/architecture.md.
+// datasheet is needed: a global-shutter camera's estimate stays near zero. docs/architecture.md.
 #pragma once
 
 #include <cstddef>
@@ -46,16 +46,17 @@ class RollingShutter {
 
   // A tracked step of the camera: T_current_last and the seconds between the two frames.
   void AddStep(const SE3& T_current_last, double seconds);
-  // The camera's motion is unknown from here (lost, relocalized, map reset).
+  // The camera's motion is unknown from here (lost, relocalized, map reset); the evidence
+  // gathered towards the next update is dropped too.
   void Forget();
 
   // The features as the middle row would have seen them, or nullptr when there is nothing to
-  // correct (no motion known yet, or a global shutter that is not being estimated).
+  // correct (no motion known yet, or a readout of 0). Records the motion Observe needs.
   std::shared_ptr<const FrameFeatures> Correct(const FrameFeatures& features);
 
-  // Adds the residuals of a tracked frame (pose set, inlier map points in its slots) corrected
-  // by Correct; every kFramesPerUpdate such frames the readout is updated when the evidence is
-  // clear.
+  // Adds the residuals of a tracked frame (pose set, inlier map points in its slots) that went
+  // through Correct with a known motion; keypoints without depth are left out. Every
+  // kFramesPerUpdate such frames the readout is updated when the evidence is clear.
   void Observe(const Frame& frame);
 
   static constexpr int kStepsInMotion = 3;     // tracked steps averaged into the motion
