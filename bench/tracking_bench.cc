@@ -4,8 +4,8 @@
 // local mapping, no loop closing; second argument 0) and the full pipeline with local mapping
 // and loop closing run inline after each keyframe (1). Building the System (vocabulary load) and
 // destroying it are not timed. Third argument: rolling-shutter correction and readout estimation
-// off (0) or on (1, the default; tracking/rolling_shutter.h). Reports the mean per frame; stats.json of `drvslam run` gives
-// median/p95.
+// off (0) or on (1, the default; tracking/rolling_shutter.h). Reports the mean per frame;
+// stats.json of `drvslam run` gives median/p95.
 #include <benchmark/benchmark.h>
 
 #include <memory>
