@@ -155,6 +155,20 @@ TEST(CameraTest, ProjectAndBackprojectAreInverse) {
   EXPECT_LT((camera.Backproject(pixel, 2.5) - p).norm(), 1e-12);
 }
 
+TEST(CameraTest, PixelVelocityIsTheProjectionsDerivative) {
+  const PinholeCamera camera{CameraOptions{}};
+  const Eigen::Vector3d p(0.4, -0.3, 2.5);
+  const Eigen::Vector3d velocity(0.2, 0.1, -0.5);
+  const double h = 1e-6;
+  const Eigen::Vector2d central =
+      (camera.Project(p + h * velocity) - camera.Project(p - h * velocity)) / (2 * h);
+  const Eigen::Vector2d analytic = camera.PixelVelocity(p, velocity);
+  EXPECT_NEAR(analytic.x(), central.x(), 1e-5);
+  EXPECT_NEAR(analytic.y(), central.y(), 1e-5);
+  // Straight along the ray the pixel stays put.
+  EXPECT_LT(camera.PixelVelocity(p, 3.0 * p).norm(), 1e-12);
+}
+
 TEST(CameraTest, UndistortInvertsOpenCvDistortion) {
   CameraOptions options;
   options.k1 = 0.262383;

@@ -53,6 +53,14 @@ class PinholeCamera {
     return {(pixel.x() - options_.cx) * depth / options_.fx,
             (pixel.y() - options_.cy) * depth / options_.fy, depth};
   }
+  // How fast the (undistorted) pixel of a camera-frame point moves when the point moves with
+  // `velocity_c`: the projection's derivative along it. The point must have z > 0.
+  Eigen::Vector2d PixelVelocity(const Eigen::Vector3d& point_c,
+                                const Eigen::Vector3d& velocity_c) const {
+    const double inv_z = 1.0 / point_c.z();
+    return {options_.fx * (velocity_c.x() - point_c.x() * velocity_c.z() * inv_z) * inv_z,
+            options_.fy * (velocity_c.y() - point_c.y() * velocity_c.z() * inv_z) * inv_z};
+  }
   bool InImage(const Eigen::Vector2d& pixel) const {
     return pixel.x() >= 0 && pixel.y() >= 0 && pixel.x() < options_.width &&
            pixel.y() < options_.height;

@@ -5,6 +5,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "drvslam/core/error.h"
+#include "drvslam/core/rolling_shutter_model.h"
 
 namespace drvslam {
 
@@ -90,23 +91,21 @@ FrameFeatures FrameFeatures::RollingShutterCorrected(const Vector6d& twist_per_s
   FrameFeatures corrected = *this;
   const PinholeCamera& camera = geometry_->camera;
   const double height = camera.Options().height;
-  const Eigen::Vector3d translation_rate = twist_per_second.head<3>();
-  const Eigen::Vector3d rotation_rate = twist_per_second.tail<3>();
   for (std::size_t i = 0; i < keypoints_.size(); ++i) {
     // Seen at `seconds` after the middle row: step the point back along its velocity (first
     // order; without depth only the rotation moves a ray).
-    const double seconds = (keypoints_[i].pt.y / height - 0.5) * readout_s;
+    const double seconds = RowTimeFromMiddle(keypoints_[i].pt.y, height) * readout_s;
     cv::KeyPoint& keypoint = corrected.keypoints_un_[i];
     const bool has_depth = depth_[i] > 0;
-    const Eigen::Vector3d ray((keypoint.pt.x - camera.Cx()) / camera.Fx(),
-                              (keypoint.pt.y - camera.Cy()) / camera.Fy(), 1.0);
+    const Eigen::Vector3d ray = camera.Backproject({keypoint.pt.x, keypoint.pt.y}, 1.0);
     const Eigen::Vector3d point = has_depth ? Eigen::Vector3d(ray * depth_[i]) : ray;
-    Eigen::Vector3d velocity = rotation_rate.cross(point);
-    if (has_depth) velocity += translation_rate;
+    const Eigen::Vector3d velocity =
+        has_depth ? PointVelocity(twist_per_second, point) : RayVelocity(twist_per_second, point);
     const Eigen::Vector3d moved = point - seconds * velocity;
     if (!(moved.z() > 0)) continue;
-    keypoint.pt.x = static_cast<float>(camera.Fx() * moved.x() / moved.z() + camera.Cx());
-    keypoint.pt.y = static_cast<float>(camera.Fy() * moved.y() / moved.z() + camera.Cy());
+    const Eigen::Vector2d pixel = camera.Project(moved);
+    keypoint.pt.x = static_cast<float>(pixel.x());
+    keypoint.pt.y = static_cast<float>(pixel.y());
     if (has_depth) {
       corrected.depth_[i] = static_cast<float>(moved.z());
       corrected.right_u_[i] = static_cast<float>(keypoint.pt.x - geometry_->Bf() / moved.z());
@@ -125,8 +124,8 @@ std::vector<cv::KeyPoint> FrameFeatures::KeypointsForMapFile() const {
   std::vector<cv::Point3f> rays;
   rays.reserve(keypoints.size());
   for (const cv::KeyPoint& keypoint : keypoints) {
-    rays.emplace_back(static_cast<float>((keypoint.pt.x - camera.Cx()) / camera.Fx()),
-                      static_cast<float>((keypoint.pt.y - camera.Cy()) / camera.Fy()), 1.f);
+    const Eigen::Vector3d ray = camera.Backproject({keypoint.pt.x, keypoint.pt.y}, 1.0);
+    rays.emplace_back(static_cast<float>(ray.x()), static_cast<float>(ray.y()), 1.f);
   }
   std::vector<cv::Point2f> distorted;
   cv::projectPoints(rays, cv::Vec3d::zeros(), cv::Vec3d::zeros(), camera.K(),

@@ -5,24 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drvslam/core/rolling_shutter_model.h"
 #include "drvslam/map/frame.h"
 #include "drvslam/map/map_point.h"
 
 namespace drvslam {
-
-namespace {
-
-// The keypoint's time relative to the middle row, per second of readout: -0.5 at the top row.
-double RowTime(const cv::KeyPoint& raw_keypoint, double image_height) {
-  return raw_keypoint.pt.y / image_height - 0.5;
-}
-
-// Velocity of a camera-frame point under the camera's twist per second (rho, phi).
-Eigen::Vector3d PointVelocity(const Vector6d& twist, const Eigen::Vector3d& point) {
-  return twist.tail<3>().cross(point) + twist.head<3>();
-}
-
-}  // namespace
 
 std::optional<double> ReadoutStep(const ReadoutEvidence& evidence, double min_sigmas) {
   if (evidence.observations < 10 || !(evidence.motion_squared > 0)) return std::nullopt;
@@ -91,16 +78,14 @@ void RollingShutter::Observe(const Frame& frame) {
     if (!point || frame.outlier[i] || !(features.Depth(i) > 0)) continue;
     const Eigen::Vector3d X = R_cw * point->Position() + t_cw;
     if (!(X.z() > 0)) continue;
-    const double inv_z = 1.0 / X.z();
     const cv::KeyPoint& observed = features.KeypointsUn()[i];
-    const Eigen::Vector2d residual(observed.pt.x - (camera.Fx() * X.x() * inv_z + camera.Cx()),
-                                   observed.pt.y - (camera.Fy() * X.y() * inv_z + camera.Cy()));
-    // Image motion per second of readout: the projection's derivative along the point's
-    // velocity, scaled by the row's time.
-    const Eigen::Vector3d V = PointVelocity(*used_twist_, X);
-    const double row_time = RowTime(features.Keypoints()[i], height);
-    const Eigen::Vector2d motion(row_time * camera.Fx() * (V.x() - X.x() * V.z() * inv_z) * inv_z,
-                                 row_time * camera.Fy() * (V.y() - X.y() * V.z() * inv_z) * inv_z);
+    const Eigen::Vector2d residual =
+        Eigen::Vector2d(observed.pt.x, observed.pt.y) - camera.Project(X);
+    // Image motion per second of readout: the pixel's velocity as the point moves, scaled by
+    // the row's time.
+    const double row_time = RowTimeFromMiddle(features.Keypoints()[i].pt.y, height);
+    const Eigen::Vector2d motion =
+        row_time * camera.PixelVelocity(X, PointVelocity(*used_twist_, X));
     const double weight = pyramid.inv_sigma2[static_cast<std::size_t>(observed.octave)];
     evidence_.residual_dot_motion += weight * residual.dot(motion);
     evidence_.motion_squared += weight * motion.squaredNorm();
