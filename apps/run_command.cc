@@ -94,6 +94,13 @@ void PrintSummary(const RunSummary& summary, const std::string& out_dir) {
   std::printf("map points:  %zu\n", s.map_points);
   std::printf("readout:     %.1f ms rolling shutter (%d estimate updates)\n", s.readout_ms,
               s.readout_updates);
+  if (s.feature_budget) {
+    std::printf(
+        "features:    cut %zu times while frames were skipped; %zu frames below "
+        "nFeatures, lowest %.0f %%\n",
+        s.feature_budget->cuts, s.feature_budget->frames_reduced,
+        100.0 * s.feature_budget->lowest_share);
+  }
   for (const auto& [stage, timing] : s.stages) {
     std::printf("%-12s median %.2f ms, p95 %.2f ms\n", (stage + ":").c_str(), timing.median_ms,
                 timing.p95_ms);

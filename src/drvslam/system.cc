@@ -31,6 +31,7 @@
 #include "drvslam/mapping/local_mapper.h"
 #include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
+#include "drvslam/tracking/feature_budget.h"
 #include "drvslam/tracking/frame_factory.h"
 #include "drvslam/tracking/tracker.h"
 
@@ -111,6 +112,8 @@ struct System::Impl {
   SystemOptions options;
   Map map;
   FrameFactory frame_factory;
+  // A live camera's tracking extracts fewer features while frames are being skipped.
+  std::optional<FeatureBudget> feature_budget;
   Tracker tracker;
   StageTimings timings;
   std::unique_ptr<DynamicFrontEnd> dynamic;
@@ -156,7 +159,11 @@ System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_op
   ApplyOpenCvThreadBudget(ChooseOpenCvThreads(
       options.dynamic ? options.dynamic->segmentation.dnn_threads : 0, options.sequential));
   tracker.SetMappingStatus(&local_mapper);
-  tracker.SetLiveCamera(options.dynamic && options.dynamic->realtime && !options.sequential);
+  const bool live_camera = options.dynamic && options.dynamic->realtime && !options.sequential;
+  tracker.SetLiveCamera(live_camera);
+  if (live_camera && settings.orb.load_shedding_floor < 1.0) {
+    feature_budget.emplace(settings.orb.load_shedding_floor);
+  }
   if (options.relocalization.enabled) {
     options.relocalization.Check();
     const Stopwatch load;
@@ -284,8 +291,12 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   // Dynamic objects: segmentation starts before extraction (on its own thread) and may raise
   // the feature target; with Dynamic.skipMovingExtraction no features are extracted on objects
   // believed moving; the frame's masks then take the moving features out before tracking.
-  const int feature_target =
-      dynamic ? dynamic->BeginFrame(timestamp, bgr, tracker.KeyFrameLikely()) : 0;
+  int feature_target = dynamic ? dynamic->BeginFrame(timestamp, bgr, tracker.KeyFrameLikely()) : 0;
+  if (feature_budget) {
+    feature_target = feature_budget->TargetFor(
+        timestamp, feature_target > 0 ? feature_target : settings.orb.n_features,
+        tracker.State() == TrackingState::kOk);
+  }
   const cv::Mat skip_mask = dynamic ? dynamic->MovingSkipMask() : cv::Mat();
   const Stopwatch extraction;
   Frame frame = frame_factory.Build(timestamp, bgr, depth, skip_mask, feature_target);
@@ -427,6 +438,7 @@ SystemStats System::Impl::Stats() const {
   stats.reference_fallbacks = tracker.ReferenceFallbacks();
   stats.readout_ms = tracker.ReadoutSeconds() * 1e3;
   stats.readout_updates = tracker.ReadoutUpdates();
+  if (feature_budget) stats.feature_budget = feature_budget->Stats();
   stats.frames_lost = tracker.Recorder().LostAfterInitialization();
   stats.map_resets = tracker.Recorder().MapResets();
   stats.frames_discarded = tracker.Recorder().DiscardedCount();

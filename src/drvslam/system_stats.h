@@ -12,6 +12,7 @@
 #include "drvslam/dynamic/dynamic_front_end.h"
 #include "drvslam/loop/loop_closer.h"
 #include "drvslam/mapping/local_mapper.h"
+#include "drvslam/tracking/feature_budget.h"
 
 namespace drvslam {
 
@@ -25,6 +26,9 @@ struct SystemStats {
   // Tracking.estimateReadout is on) and how many times the estimate moved.
   double readout_ms = 0.0;
   int readout_updates = 0;
+  // With a live camera (and ORBextractor.loadSheddingFloor below 1): how often tracking cut its
+  // features because frames were skipped.
+  std::optional<FeatureBudgetStats> feature_budget;
   std::size_t frames_lost = 0;  // frames after initialization that were not tracked
   // Tracking.resetWhenLost: maps started anew, and the frames tracked in the maps they
   // discarded (not in the trajectory, whose world frame is the final map's; not in `tracked`).

@@ -380,6 +380,11 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
   json["reference_fallbacks"] = s.reference_fallbacks;
   json["readout_ms"] = s.readout_ms;
   json["readout_updates"] = s.readout_updates;
+  if (s.feature_budget) {
+    json["feature_budget"] = {{"cuts", s.feature_budget->cuts},
+                              {"frames_reduced", s.feature_budget->frames_reduced},
+                              {"lowest_share", s.feature_budget->lowest_share}};
+  }
   json["frames_lost"] = s.frames_lost;
   json["map_resets"] = s.map_resets;
   json["frames_discarded"] = s.frames_discarded;
