@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -37,10 +39,12 @@ TEST(FrameCadence, TheFrameAfterAGapShowsIt) {
 }
 
 TEST(FrameCadence, NothingIsJudgedBeforeAFewGaps) {
-  FrameCadence cadence;
-  // Three gaps are too few to know the period: the long one is not judged.
-  const std::vector<bool> skips = Feed(cadence, {0, 1, 2, 5});
-  EXPECT_EQ(skips, std::vector<bool>(4, false));
+  // Three gaps before the long one are too few to know the period; four are enough.
+  FrameCadence three;
+  EXPECT_EQ(Feed(three, {0, 1, 2, 3, 5}), std::vector<bool>(5, false));
+  FrameCadence four;
+  EXPECT_EQ(Feed(four, {0, 1, 2, 3, 4, 6}),
+            (std::vector<bool>{false, false, false, false, false, true}));
   EXPECT_FALSE(FrameCadence().Period().has_value());
 }
 
@@ -56,14 +60,26 @@ TEST(FrameCadence, JitteredTimestampsAndARepeatShowNoSkip) {
 
 TEST(FrameCadence, ThePeriodIsTheLowerQuartileOfRecentGaps) {
   FrameCadence cadence;
-  // Every third frame skipped for a while: a third of the gaps are double, the period holds.
+  // Three frames in five skipped their successor, on a jittery clock: most gaps are double, so
+  // their median is no period, and the shortest gap is too short.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.05 * kPeriod, 0.05 * kPeriod);
+  std::vector<double> gaps;
   int index = 0;
-  for (int i = 0; i < 60; ++i) {
-    index += (i % 3 == 2) ? 2 : 1;
-    cadence.ShowsSkip(index * kPeriod);
+  double last = 0.0;
+  for (int i = 0; i < FrameCadence::kGapWindow + 1; ++i) {
+    index += (i % 5 < 3) ? 2 : 1;
+    const double timestamp = index * kPeriod + jitter(rng);
+    if (i > 0) gaps.push_back(timestamp - last);
+    last = timestamp;
+    cadence.ShowsSkip(timestamp);
   }
+  std::sort(gaps.begin(), gaps.end());
+  const double tolerance = 0.04 * kPeriod;
   ASSERT_TRUE(cadence.Period().has_value());
-  EXPECT_NEAR(*cadence.Period(), kPeriod, 1e-9);
+  EXPECT_NEAR(*cadence.Period(), kPeriod, tolerance);
+  EXPECT_GT(std::abs(gaps[gaps.size() / 2] - kPeriod), tolerance);  // the median
+  EXPECT_GT(std::abs(gaps.front() - kPeriod), tolerance);           // the minimum
   // A camera that changes to 15 Hz is learned within the window of recent gaps.
   for (int i = 0; i < 40; ++i) {
     index += 2;

@@ -208,6 +208,13 @@ TEST(OptionChecksTest, BadValuesNameTheKeyTheValueAndTheRule) {
   orb.min_th_fast = 21;
   EXPECT_EQ(testing::ErrorMessageOf([&] { orb.Check(); }),
             "ORBextractor.minThFAST = 21 must not exceed ORBextractor.iniThFAST");
+  for (const double floor : {0.0, -0.5, 1.5}) {
+    orb = OrbExtractorOptions();
+    orb.load_shedding_floor = floor;
+    EXPECT_NE(testing::ErrorMessageOf([&] { orb.Check(); }).find("ORBextractor.loadSheddingFloor"),
+              std::string::npos)
+        << floor;
+  }
   TrackerOptions tracker;
   tracker.min_inliers = 5;
   EXPECT_EQ(testing::ErrorMessageOf([&] { tracker.Check(); }),

@@ -81,8 +81,10 @@ TEST_F(FeatureBudgetTest, UntilTrackingIsEstablishedFramesGetTheFullCount) {
   EXPECT_EQ(Next(budget, 2, 1000, false), 1000);
   EXPECT_EQ(Next(budget, 2, 1000, false), 1000);
   EXPECT_EQ(budget.Stats().frames_reduced, 0u);
+  EXPECT_DOUBLE_EQ(budget.Stats().lowest_share, 1.0);
   // Once tracking, the cuts apply.
   EXPECT_EQ(Next(budget, 1, 1000, true), 810);
+  EXPECT_DOUBLE_EQ(budget.Stats().lowest_share, 0.81);
 }
 
 TEST_F(FeatureBudgetTest, AFloorOfOneNeverCuts) {
@@ -96,6 +98,17 @@ TEST_F(FeatureBudgetTest, TheTargetIsAtLeastOneFeature) {
   FeatureBudget budget(0.1);
   Settle(budget);
   for (int i = 0; i < 30; ++i) EXPECT_GE(Next(budget, 2, 1), 1);
+  EXPECT_LT(budget.Share(), 0.5);
+}
+
+TEST_F(FeatureBudgetTest, AFloorThatIsAPowerOfTheCutTakesNoExtraCut) {
+  FeatureBudget budget(0.729);
+  Settle(budget);
+  for (int i = 0; i < 6; ++i) Next(budget, 2);
+  EXPECT_EQ(budget.Stats().cuts, 3u);
+  // So three clean seconds bring back the full count.
+  for (int i = 0; i < 3 * FeatureBudget::kFramesToGrow; ++i) Next(budget);
+  EXPECT_EQ(Next(budget), 1000);
 }
 
 TEST(FeatureBudget, AFloorOutsideZeroToOneIsRefused) {

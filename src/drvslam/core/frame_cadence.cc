@@ -18,8 +18,8 @@ bool FrameCadence::ShowsSkip(double timestamp) {
   std::optional<double> gap;
   if (last_timestamp_ && timestamp > *last_timestamp_) gap = timestamp - *last_timestamp_;
   last_timestamp_ = timestamp;
-  const std::optional<double> period = Period();
   if (!gap) return false;
+  const std::optional<double> period = Period();
   recent_gaps_.push_back(*gap);
   if (recent_gaps_.size() > kGapWindow) recent_gaps_.pop_front();
   return period && *gap > kSkipGapPeriods * *period;

@@ -65,9 +65,9 @@ const OptionTable<OrbExtractorOptions>& OrbExtractorOptionTable() {
              "Threads extracting one image: 2 gives half the pyramid levels to a helper thread "
              "(same features; --sequential always uses 1).")
         .Real("loadSheddingFloor", &O::load_shedding_floor, Bounds::AboveUpTo(0, 1),
-              "With a live camera (--realtime): while frames are skipped, extract fewer "
-              "features, down to this share of nFeatures, so that tracking keeps up (1: never "
-              "fewer).")
+              "With a live camera (--realtime, dynamic stage on): while frames are skipped, "
+              "extract fewer features, down to this share of nFeatures, so that tracking keeps "
+              "up (1: never fewer).")
         .Rule(
             "minThFAST", [](const O& o) { return o.min_th_fast <= o.ini_th_fast; },
             "must not exceed ORBextractor.iniThFAST");

@@ -7,18 +7,19 @@
 
 namespace drvslam {
 
-FeatureBudget::FeatureBudget(double floor) : floor_(floor) {
+FeatureBudget::FeatureBudget(double floor) : floor_(floor), max_cuts_(0) {
   if (!(floor > 0.0 && floor <= 1.0)) {
     throw Error("FeatureBudget: the floor must be in (0, 1], got " + std::to_string(floor));
   }
+  // The fewest cuts that reach the floor; the tolerance keeps a floor that is itself a power of
+  // kCut (0.729) from one more cut that changes nothing.
+  max_cuts_ = static_cast<int>(std::ceil(std::log(floor) / std::log(kCut) - 1e-9));
 }
 
-int FeatureBudget::TargetFor(double timestamp, int full, bool tracking) {
-  // The share is kCut^cuts_in_force_, floored: counting cuts keeps the full count exact.
-  const auto share_at = [this](int cuts) { return std::max(floor_, std::pow(kCut, cuts)); };
+int FeatureBudget::TargetFor(double timestamp, int full, bool tracking_established) {
   if (cadence_.ShowsSkip(timestamp)) {
     // Multiplicative: a machine that stays short keeps cutting until tracking keeps up.
-    if (share_at(cuts_in_force_) > floor_) {
+    if (cuts_in_force_ < max_cuts_) {
       ++cuts_in_force_;
       ++stats_.cuts;
     }
@@ -28,10 +29,11 @@ int FeatureBudget::TargetFor(double timestamp, int full, bool tracking) {
     --cuts_in_force_;
     frames_without_skip_ = 0;
   }
-  share_ = share_at(cuts_in_force_);
-  stats_.lowest_share = std::min(stats_.lowest_share, share_);
-  if (cuts_in_force_ == 0 || !tracking) return full;
+  // Counting cuts, not multiplying the share, keeps the full count exact after growing back.
+  share_ = std::max(floor_, std::pow(kCut, cuts_in_force_));
+  if (cuts_in_force_ == 0 || !tracking_established) return full;
   ++stats_.frames_reduced;
+  stats_.lowest_share = std::min(stats_.lowest_share, share_);
   return std::max(1, static_cast<int>(std::lround(full * share_)));
 }
 

@@ -6,7 +6,8 @@
 // (core/frame_cadence.h), the share of ORBextractor.nFeatures extracted is cut by kCut, down
 // to a floor (ORBextractor.loadSheddingFloor); after kFramesToGrow frames in a row without a
 // skip it grows back by the same factor, up to the full count. On an idle machine that keeps up
-// it stays at the full count; a sequential or threaded run never uses it.
+// it stays at the full count; a sequential or threaded run never uses it, nor does a run
+// without the dynamic stage (System builds it with the dynamic stage's realtime mode).
 #pragma once
 
 #include <cstddef>
@@ -30,9 +31,9 @@ class FeatureBudget {
   // The features to extract from the frame at `timestamp` (seconds, increasing): `full`, what
   // the frame would get on an idle machine (ORBextractor.nFeatures, or more where the dynamic
   // stage raised it), times the current share; at least 1. While tracking is not established
-  // (`tracking` false: initialization needs Tracking.minInitialPoints features, relocalization
-  // every feature it can get) the frame gets `full`, and its timestamp still counts.
-  int TargetFor(double timestamp, int full, bool tracking);
+  // (initialization needs Tracking.minInitialPoints features, relocalization every feature it
+  // can get) the frame gets `full`, and its timestamp still counts.
+  int TargetFor(double timestamp, int full, bool tracking_established);
 
   double Share() const { return share_; }
   const FeatureBudgetStats& Stats() const { return stats_; }
@@ -42,6 +43,7 @@ class FeatureBudget {
 
  private:
   double floor_;
+  int max_cuts_;  // cuts after which the share is at the floor
   int cuts_in_force_ = 0;
   double share_ = 1.0;
   int frames_without_skip_ = 0;
