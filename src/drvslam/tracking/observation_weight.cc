@@ -12,18 +12,18 @@ int ObservationWeight(const MapPoint& point) {
   return weight;
 }
 
+bool IsWellObserved(const MapPoint& point, int min_weight) {
+  // Tracking asks this every frame: the observation list is only walked when the count alone
+  // (each observation weighs 1 or 2) cannot decide.
+  const int observations = point.ObservationCount();
+  if (observations >= min_weight) return true;
+  return 2 * observations >= min_weight && ObservationWeight(point) >= min_weight;
+}
+
 int WellObservedPoints(const KeyFrame& keyframe, int min_weight) {
   int count = 0;
   for (const auto& point : keyframe.MapPoints()) {
-    if (!point || point->IsBad()) continue;
-    // Tracking asks this every frame: the observation list is only walked when the count
-    // alone (each observation weighs 1 or 2) cannot decide.
-    const int observations = point->ObservationCount();
-    if (observations >= min_weight) {
-      ++count;
-    } else if (2 * observations >= min_weight && ObservationWeight(*point) >= min_weight) {
-      ++count;
-    }
+    if (point && !point->IsBad() && IsWellObserved(*point, min_weight)) ++count;
   }
   return count;
 }

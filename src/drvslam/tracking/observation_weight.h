@@ -10,6 +10,9 @@ namespace drvslam {
 
 int ObservationWeight(const MapPoint& point);
 
+// Whether the point's observation weight is at least min_weight.
+bool IsWellObserved(const MapPoint& point, int min_weight);
+
 // Points of the keyframe (not bad) whose observation weight is at least min_weight.
 int WellObservedPoints(const KeyFrame& keyframe, int min_weight);
 

@@ -10,6 +10,7 @@
 #include "drvslam/match/pose_observations.h"
 #include "drvslam/tracking/depth_agreement.h"
 #include "drvslam/tracking/keyframe_factory.h"
+#include "drvslam/tracking/keyframe_occlusion.h"
 #include "drvslam/tracking/keyframe_policy.h"
 #include "drvslam/tracking/observation_weight.h"
 
@@ -143,7 +144,7 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
   }
   result.inliers = matches_inliers_;
   // No keyframe is made from a pose that may be a repeat of the scene away.
-  if (!localization_only_ && !check_.Pending() && NeedNewKeyFrame()) {
+  if (!localization_only_ && !check_.Pending() && NeedNewKeyFrame(depth)) {
     last_evidence_.reset();
     last_keyframe_ = CreateKeyFrame(*current_, map_, options_.new_points_per_keyframe);
     AttachBow(*last_keyframe_);
@@ -314,7 +315,7 @@ int Tracker::OptimizeCurrentPose() {
   return inliers;
 }
 
-bool Tracker::NeedNewKeyFrame() const {
+bool Tracker::NeedNewKeyFrame(const cv::Mat& depth_image) const {
   if (keyframe_vetoed_) return false;
   // A relocalized camera adds no keyframe for a while unless the map is small: the pose is
   // confirmed by the next frames first (ORB-SLAM2's rule).
@@ -335,6 +336,11 @@ bool Tracker::NeedNewKeyFrame() const {
   const int min_weight = evidence.keyframes_in_map <= 2 ? 2 : 3;
   evidence.reference_tracked_points =
       reference_keyframe_ ? WellObservedPoints(*reference_keyframe_, min_weight) : 0;
+  if (reference_keyframe_ && options_.keyframe_occlusion) {
+    evidence.reference_tracked_points -=
+        HiddenWellObservedPoints(*reference_keyframe_, min_weight, current_->Pose(),
+                                 current_->Geometry().camera, depth_image);
+  }
   const FrameFeatures& features = current_->Features();
   for (std::size_t i = 0; i < current_->Size(); ++i) {
     const float depth = features.Depth(i);

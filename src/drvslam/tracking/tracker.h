@@ -113,7 +113,9 @@ class Tracker {
   // Pose-only optimization of current_ from its matches; outlier matches are dropped.
   // Returns the inlier count.
   int OptimizeCurrentPose();
-  bool NeedNewKeyFrame() const;
+  // `depth_image`: the frame's (may be empty), for the reference points hidden behind
+  // something nearer (Tracking.keyframeOcclusion).
+  bool NeedNewKeyFrame(const cv::Mat& depth_image) const;
   // Within max_frames_between_keyframes_ frames of the last relocalization.
   bool RecentlyRelocalized() const;
   // Local mapping may have replaced (fused) or removed points the last frame still holds.

@@ -30,7 +30,11 @@ const OptionTable<TrackerOptions>& TrackerOptionTable() {
               "to top; 0 = global shutter); the start when estimateReadout is on.")
         .Bool("estimateReadout", &T::estimate_readout,
               "Estimate the rolling-shutter readout from the tracked poses' reprojection "
-              "residuals (1) or keep readoutTime (0).");
+              "residuals (1) or keep readoutTime (0).")
+        .Bool("keyframeOcclusion", &T::keyframe_occlusion,
+              "Keyframe rule: compare the inliers with the reference keyframe's points not "
+              "hidden behind something nearer in the frame (1), or with all of them "
+              "(0, ORB-SLAM2).");
     return t;
   }();
   return table;

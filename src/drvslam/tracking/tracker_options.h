@@ -36,6 +36,11 @@ struct TrackerOptions {
   double readout_time_s = 0.0;
   // Tracking.estimateReadout: refine the readout from the tracked poses' reprojection residuals.
   bool estimate_readout = true;
+  // Tracking.keyframeOcclusion: the keyframe rule compares the inliers against the reference
+  // keyframe's points not hidden behind something nearer in this frame (keyframe_occlusion.h),
+  // so people walking in front of the scene do not ask for a keyframe every few frames.
+  // false: ORB-SLAM2's rule, against all of them.
+  bool keyframe_occlusion = true;
 
   void Check() const;  // throws Error naming the bad key
 };
@@ -45,8 +50,8 @@ const OptionTable<TrackerOptions>& TrackerOptionTable();
 
 // Reads Tracking.minInitialPoints, Tracking.maxFramesBetweenKeyframes,
 // Tracking.newPointsPerKeyframe, Tracking.minInliers, Tracking.resetWhenLost and
-// Tracking.bowReferenceMatching, Tracking.realtimeQueuedKeyframes, Tracking.readoutTime and
-// Tracking.estimateReadout.
+// Tracking.bowReferenceMatching, Tracking.realtimeQueuedKeyframes, Tracking.readoutTime,
+// Tracking.estimateReadout and Tracking.keyframeOcclusion.
 TrackerOptions LoadTrackerOptions(const SettingsFile& file);
 
 }  // namespace drvslam
