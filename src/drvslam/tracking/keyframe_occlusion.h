@@ -16,8 +16,8 @@
 namespace drvslam {
 
 // A depth reading counts as in front of a point when it is nearer than this share of the
-// point's depth: three times the ~3 % relative depth noise measured on a structured-light
-// sensor (docs/benchmarks.md), so noise alone never hides a point.
+// point's depth: three times the ~3 % relative depth spread measured on a structured-light
+// sensor (docs/benchmarks.md#real-data), so noise alone never hides a point.
 inline constexpr double kOccluderDepthShare = 0.9;
 // Half the side of the square of depth readings that must all be nearer.
 inline constexpr int kOccluderRadius = 3;
