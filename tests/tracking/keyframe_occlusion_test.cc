@@ -66,7 +66,7 @@ TEST(KeyFrameOcclusionTest, PersonInFrontHidesOnlyThePointsBehindThem) {
   // Someone 1.5 m away covering the image's left half.
   depth(cv::Rect(0, 0, 320, 480)).setTo(1.5f);
   // Points at x -1.2 and -0.4 m project left of the centre: 2 columns of 3.
-  EXPECT_EQ(HiddenWellObservedPoints(*keyframe, 2, SE3::Identity(), camera, depth), 6);
+  EXPECT_EQ(CountReferencePoints(*keyframe, 2, SE3::Identity(), camera, depth).hidden, 6);
 }
 
 TEST(KeyFrameOcclusionTest, DepthNoiseAndMissingDepthHideNothing) {
@@ -74,23 +74,23 @@ TEST(KeyFrameOcclusionTest, DepthNoiseAndMissingDepthHideNothing) {
   const PinholeCamera camera(TestCamera());
   // 5 % nearer everywhere: within the depth noise, not something in front.
   cv::Mat noisy(480, 640, CV_32FC1, cv::Scalar(2.85f));
-  EXPECT_EQ(HiddenWellObservedPoints(*keyframe, 2, SE3::Identity(), camera, noisy), 0);
+  EXPECT_EQ(CountReferencePoints(*keyframe, 2, SE3::Identity(), camera, noisy).hidden, 0);
   cv::Mat holes(480, 640, CV_32FC1, cv::Scalar(0.0f));
-  EXPECT_EQ(HiddenWellObservedPoints(*keyframe, 2, SE3::Identity(), camera, holes), 0);
-  EXPECT_EQ(HiddenWellObservedPoints(*keyframe, 2, SE3::Identity(), camera, cv::Mat()), 0);
+  EXPECT_EQ(CountReferencePoints(*keyframe, 2, SE3::Identity(), camera, holes).hidden, 0);
+  EXPECT_EQ(CountReferencePoints(*keyframe, 2, SE3::Identity(), camera, cv::Mat()).hidden, 0);
 }
 
 TEST(KeyFrameOcclusionTest, PointsOutOfViewOrPoorlyObservedAreNotHidden) {
   const auto keyframe = KeyFrameSeeing(WallPoints());
   const PinholeCamera camera(TestCamera());
   cv::Mat near(480, 640, CV_32FC1, cv::Scalar(1.0f));
-  EXPECT_EQ(HiddenWellObservedPoints(*keyframe, 2, SE3::Identity(), camera, near), 12);
+  EXPECT_EQ(CountReferencePoints(*keyframe, 2, SE3::Identity(), camera, near).hidden, 12);
   // One observation with depth weighs 2: none is well observed at 3.
-  EXPECT_EQ(HiddenWellObservedPoints(*keyframe, 3, SE3::Identity(), camera, near), 0);
+  EXPECT_EQ(CountReferencePoints(*keyframe, 3, SE3::Identity(), camera, near).hidden, 0);
   // Turned 90 degrees about y, the camera sees none of the wall: out of view is not hidden.
   const SE3 turned(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix(),
                    Eigen::Vector3d::Zero());
-  EXPECT_EQ(HiddenWellObservedPoints(*keyframe, 2, turned, camera, near), 0);
+  EXPECT_EQ(CountReferencePoints(*keyframe, 2, turned, camera, near).hidden, 0);
 }
 
 TEST(KeyFrameOcclusionTest, HiddenFollowsTheFramesPose) {

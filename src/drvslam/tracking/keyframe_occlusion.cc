@@ -36,15 +36,17 @@ bool HiddenBehindNearer(const Eigen::Vector3d& point_w, const SE3& T_cw,
   return nearer > 0;
 }
 
-int HiddenWellObservedPoints(const KeyFrame& reference, int min_weight, const SE3& T_cw,
-                             const PinholeCamera& camera, const cv::Mat& depth) {
-  if (depth.empty()) return 0;
-  int hidden = 0;
+ReferencePointCount CountReferencePoints(const KeyFrame& reference, int min_weight, const SE3& T_cw,
+                                         const PinholeCamera& camera, const cv::Mat& depth) {
+  ReferencePointCount count;
   for (const auto& point : reference.MapPoints()) {
     if (!point || point->IsBad() || !IsWellObserved(*point, min_weight)) continue;
-    if (HiddenBehindNearer(point->Position(), T_cw, camera, depth)) ++hidden;
+    ++count.well_observed;
+    if (!depth.empty() && HiddenBehindNearer(point->Position(), T_cw, camera, depth)) {
+      ++count.hidden;
+    }
   }
-  return hidden;
+  return count;
 }
 
 }  // namespace drvslam

@@ -28,9 +28,14 @@ inline constexpr int kOccluderRadius = 3;
 bool HiddenBehindNearer(const Eigen::Vector3d& point_w, const SE3& T_cw,
                         const PinholeCamera& camera, const cv::Mat& depth);
 
-// The reference keyframe's well-observed points (observation_weight.h, min_weight) that are
-// hidden behind something nearer in a frame at `T_cw` with `depth`. 0 when depth is empty.
-int HiddenWellObservedPoints(const KeyFrame& reference, int min_weight, const SE3& T_cw,
-                             const PinholeCamera& camera, const cv::Mat& depth);
+// The reference keyframe's well-observed points (observation_weight.h, min_weight), and how many
+// of them are hidden behind something nearer in a frame at `T_cw` with `depth` (0 when depth is
+// empty). One pass: tracking asks every frame.
+struct ReferencePointCount {
+  int well_observed = 0;
+  int hidden = 0;
+};
+ReferencePointCount CountReferencePoints(const KeyFrame& reference, int min_weight, const SE3& T_cw,
+                                         const PinholeCamera& camera, const cv::Mat& depth);
 
 }  // namespace drvslam

@@ -334,12 +334,14 @@ bool Tracker::NeedNewKeyFrame(const cv::Mat& depth_image) const {
   // ORB-SLAM2's thresholds count a depth observation twice (observation_weight.h): with one
   // or two keyframes, a point seen once with depth is already well observed.
   const int min_weight = evidence.keyframes_in_map <= 2 ? 2 : 3;
-  evidence.reference_tracked_points =
-      reference_keyframe_ ? WellObservedPoints(*reference_keyframe_, min_weight) : 0;
   if (reference_keyframe_ && options_.keyframe_occlusion) {
-    evidence.reference_tracked_points -=
-        HiddenWellObservedPoints(*reference_keyframe_, min_weight, current_->Pose(),
-                                 current_->Geometry().camera, depth_image);
+    const ReferencePointCount count =
+        CountReferencePoints(*reference_keyframe_, min_weight, current_->Pose(),
+                             current_->Geometry().camera, depth_image);
+    evidence.reference_tracked_points = count.well_observed - count.hidden;
+  } else {
+    evidence.reference_tracked_points =
+        reference_keyframe_ ? WellObservedPoints(*reference_keyframe_, min_weight) : 0;
   }
   const FrameFeatures& features = current_->Features();
   for (std::size_t i = 0; i < current_->Size(); ++i) {
