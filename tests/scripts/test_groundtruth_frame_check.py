@@ -107,3 +107,42 @@ def test_a_missing_file_is_one_error_naming_it(tmp_path):
                              str(tmp_path / "none.txt")], capture_output=True, text=True)
     assert result.returncode != 0
     assert "none.txt" in result.stderr and "Traceback" not in result.stderr
+
+
+def fit_lever(tmp_path, lever, noise_m=0.0):
+    """Runs --fit-lever on a ground truth that follows a point `lever` (camera frame) from the
+    camera centre; the estimate is the camera's path, with seeded position noise."""
+    camera = camera_path()
+    body = [(s, R, p + R @ lever) for s, R, p in camera]
+    noise = np.random.default_rng(7).normal(0.0, noise_m, (len(camera), 3))
+    estimate = [(s, R, p + n) for (s, R, p), n in zip(camera, noise)]
+    write_tum(tmp_path / "estimate.txt", estimate)
+    write_tum(tmp_path / "truth.txt", body)
+    result = subprocess.run([sys.executable, SCRIPT, str(tmp_path / "estimate.txt"),
+                             str(tmp_path / "truth.txt"), "--fit-lever"],
+                            capture_output=True, text=True, check=True)
+    fitted = re.search(r"fitted lever arm \(camera frame\): \[\s*([-\d.]+)\s+([-\d.]+)\s+([-\d.]+)\] "
+                       r"cm, [\d.]+ cm long; ATE ([\d.]+) cm", result.stdout)
+    halves = re.findall(r"half: ATE ([\d.]+) cm as given, ([\d.]+) cm with", result.stdout)
+    return ([float(v) / 100 for v in fitted.groups()[:3]], float(fitted.group(4)),
+            [(float(a), float(b)) for a, b in halves])
+
+
+def test_fits_the_lever_arm_the_ground_truth_follows(tmp_path):
+    lever = np.array([0.016, 0.002, -0.013])
+    fitted, ate_with, halves = fit_lever(tmp_path, lever, noise_m=0.002)
+    assert np.linalg.norm(np.array(fitted) - lever) < 0.002
+    # The 2 mm of noise per axis is what is left: sqrt(3) * 0.2 cm.
+    assert ate_with < 0.4
+    assert len(halves) == 2
+    # Each half, with the lever fitted on the other, falls to the noise (0.35 cm).
+    for plain, with_other_half in halves:
+        assert plain > 0.4 and with_other_half < 0.37
+
+
+def test_fits_no_lever_arm_where_there_is_none(tmp_path):
+    fitted, _, halves = fit_lever(tmp_path, np.zeros(3), noise_m=0.002)
+    assert np.linalg.norm(fitted) < 0.003
+    # The other half's error gains nothing from a lever fitted to noise.
+    for plain, with_other_half in halves:
+        assert with_other_half > plain - 0.02
