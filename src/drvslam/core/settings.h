@@ -32,8 +32,9 @@ struct OrbExtractorOptions {
   // Threads that extract one image: 2 splits the pyramid levels between the calling thread and
   // one helper thread (the same features, bit for bit).
   int threads = 2;
-  // With a live camera (--realtime), the smallest share of n_features tracking extracts while
-  // frames are being skipped (tracking/feature_budget.h); 1 always extracts n_features.
+  // With a live camera (--realtime, with the dynamic stage on: the live camera is its realtime
+  // mode), the smallest share of n_features tracking extracts while frames are being skipped
+  // (tracking/feature_budget.h); 1 always extracts n_features.
   double load_shedding_floor = 1.0;
 
   void Check() const;
