@@ -185,6 +185,41 @@ TEST_F(DynamicFrontEndTest, RealtimeMasksOfMoversThatAgeOutVetoKeyFramesForABoun
   }
 }
 
+TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames) {
+  // Frame 0 is segmented; the network then stalls, so frames 1-4 see the person through frame
+  // 0's masks carried (Segmentation.carryFrames 4). With Dynamic.largeShare below the person's
+  // share of the image that is a crowd seen through carried masks: no keyframe from frames
+  // 1-4. At the default share (the person covers less) keyframes go on; frame 5 has no masks
+  // left and is vetoed for that reason only.
+  const int frames = 6;
+  const Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
+  for (const double large_share : {0.01, 0.3}) {
+    auto segmenter = std::make_shared<GatedSegmenter>(sequence.masks);
+    DynamicFrontEndConfig config;
+    config.segmenter = segmenter;
+    config.realtime = true;
+    config.segmentation.carry_frames = 4;
+    config.options.large_share = large_share;
+    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    const bool crowd = large_share < 0.1;
+    for (int f = 0; f < frames; ++f) {
+      BeginGatedFrame(stage, sequence, f);
+      stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+      const DynamicFrameReport& report = stage.LastReport();
+      const bool carried = f >= 1 && f <= 4;
+      // The carried person covers more than 0.01 of the image and less than 0.3.
+      if (carried) ASSERT_GT(report.share, 0.01) << "frame " << f;
+      if (carried) ASSERT_LT(report.share, 0.3) << "frame " << f;
+      const bool carried_crowd = crowd && carried;
+      EXPECT_EQ(report.crowd_carried, carried_crowd) << "share " << large_share << ", frame " << f;
+      EXPECT_EQ(stage.MoversUnchecked(), carried_crowd || f == 5)
+          << "share " << large_share << ", frame " << f;
+    }
+    EXPECT_EQ(stage.Stats().frames_crowd_carried, crowd ? 4u : 0u) << "share " << large_share;
+    segmenter->Open();
+  }
+}
+
 TEST_F(DynamicFrontEndTest, FlowOnTheHelperThreadGivesTheSameFrames) {
   // Threaded, waiting for each frame's masks: only where the flow is computed differs.
   const auto near_x = [](int f) { return f < 3 ? 0.0 : 0.03 * (f - 2); };

@@ -256,6 +256,7 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   Frame filtered = RemoveDynamicFeatures(std::move(frame), depth, regions, objects, &removal);
   Record("removal", removal_watch.ElapsedMs());
 
+  JudgeCarriedCrowd(removal.plan.large_share);
   RecordStatistics(regions, objects, removal, extracted->Keypoints().size());
   RememberFrame(std::move(regions), std::move(objects), std::move(removal.regions), extracted,
                 depth, removal.plan.share);
@@ -549,7 +550,7 @@ void DynamicFrontEnd::CarryLastRegions(const std::vector<FlowTrack>& tracks, con
 }
 
 bool DynamicFrontEnd::MoversUnchecked() const {
-  if (report_.masks_expired) return true;
+  if (report_.masks_expired || report_.crowd_carried) return true;
   return config_.segmenter == nullptr && report_.unlabelled_weighed &&
          report_.unlabelled_evidence.verdict != UnlabelledVerdict::kTrusted;
 }

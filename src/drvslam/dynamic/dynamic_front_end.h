@@ -107,6 +107,9 @@ struct DynamicFrameReport {
   // --realtime: the carried masks of potentially-moving objects aged out before the network's
   // next ones came, so nothing says where those movers are now (MoversUnchecked).
   bool masks_expired = false;
+  // --realtime: potentially-moving objects cover more than Dynamic.largeShare of the view and
+  // their masks are carried, not the frame's own (MoversUnchecked).
+  bool crowd_carried = false;
   double skip_share = 0.0;  // image share where extraction was skipped (moving objects)
   int features_extracted = 0;
   int removed_on_objects = 0;
@@ -158,6 +161,7 @@ struct DynamicStats {
   std::size_t keyframe_waits = 0;
   std::size_t keyframe_waits_fresh = 0;
   std::size_t frames_masks_expired = 0;  // frames whose movers' masks had aged out
+  std::size_t frames_crowd_carried = 0;  // frames of a crowd seen through carried masks
   std::string segmenter;                 // backend name, or "none"
   bool realtime = false;
   std::optional<AsyncSegmenterStats> segmentation;
@@ -200,9 +204,10 @@ class DynamicFrontEnd {
   // Nothing in the last filtered frame says where its movers are: without a segmenter, its
   // unlabelled-motion evidence was weighed and not believed (blurred, misfit, camera failure);
   // with one (--realtime), the masks of movers in view aged out before the network's next ones
-  // came, for at most Segmentation.carryFrames frames in a row. In a crowd, keyframes from such
-  // frames mapped the people, and tracking then followed them
-  // (docs/dynamic-handling.md#frames-without-believed-evidence).
+  // came, or movers cover more than Dynamic.largeShare of the view and their masks are carried
+  // ones, each for at most Segmentation.carryFrames frames in a row. In a crowd, keyframes from
+  // such frames mapped the people, and tracking then followed them
+  // (docs/dynamic-handling.md#frames-without-believed-evidence, docs/real-time.md).
   bool MoversUnchecked() const;
   DynamicStats Stats() const;
 
@@ -276,6 +281,9 @@ class DynamicFrontEnd {
   Frame RemoveDynamicFeatures(Frame frame, const cv::Mat& depth, const MotionRegions& regions,
                               const std::vector<ObjectEvidence>& objects, RemovalOutcome* outcome);
   // The frame's report fields and the run's statistics.
+  // --realtime: whether this frame is a crowd seen through carried masks (crowd_carried), for
+  // at most Segmentation.carryFrames frames in a row.
+  void JudgeCarriedCrowd(bool large_share);
   void RecordStatistics(const MotionRegions& regions, const std::vector<ObjectEvidence>& objects,
                         const RemovalOutcome& removal, std::size_t features_extracted);
   // Keeps what the next frame needs (Previous, the moving objects) and hands the rest to the
@@ -326,8 +334,9 @@ class DynamicFrontEnd {
   std::deque<std::vector<PointMotion>> track_history_;
   std::optional<std::size_t> carried_from_;
   double carried_from_timestamp_ = 0.0;
-  bool carried_movers_ = false;  // the carried masks' source frame had potentially-moving objects
-  int frames_expired_ = 0;       // consecutive frames whose movers' masks had aged out
+  bool carried_movers_ = false;   // the carried masks' source frame had potentially-moving objects
+  int frames_expired_ = 0;        // consecutive frames whose movers' masks had aged out
+  int frames_crowd_carried_ = 0;  // consecutive frames of a crowd seen through carried masks
   MotionConsistency consistency_;
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;

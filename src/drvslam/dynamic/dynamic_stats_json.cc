@@ -43,7 +43,8 @@ nlohmann::json DynamicStatsJson(const DynamicStats& s) {
             {"own_masks", s.keyframes_own_masks},
             {"waits", s.keyframe_waits},
             {"waits_fresh", s.keyframe_waits_fresh},
-            {"frames_masks_expired", s.frames_masks_expired}}},
+            {"frames_masks_expired", s.frames_masks_expired},
+            {"frames_crowd_carried", s.frames_crowd_carried}}},
           {"unlabelled_regions", s.unlabelled_regions},
           {"map_points_culled", s.map_points_culled},
           {"mask_pixels_completed", s.mask_pixels_completed}};
