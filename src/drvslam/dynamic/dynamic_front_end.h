@@ -280,10 +280,10 @@ class DynamicFrontEnd {
   // regions, the feature floor; returns the frame without the removed features.
   Frame RemoveDynamicFeatures(Frame frame, const cv::Mat& depth, const MotionRegions& regions,
                               const std::vector<ObjectEvidence>& objects, RemovalOutcome* outcome);
-  // The frame's report fields and the run's statistics.
   // --realtime: whether this frame is a crowd seen through carried masks (crowd_carried), for
   // at most Segmentation.carryFrames frames in a row.
   void JudgeCarriedCrowd(bool large_share);
+  // The frame's report fields and the run's statistics.
   void RecordStatistics(const MotionRegions& regions, const std::vector<ObjectEvidence>& objects,
                         const RemovalOutcome& removal, std::size_t features_extracted);
   // Keeps what the next frame needs (Previous, the moving objects) and hands the rest to the
