@@ -398,7 +398,15 @@ PYBIND11_MODULE(drvslam, m) {
             return ToArrays(self.Call([](System& system) { return system.CameraTrajectory(); }));
           },
           "(timestamps (N,) float64, poses (N, 4, 4) float64 T_wc) of every tracked frame, with "
-          "the poses as mapping and loop closing refined them.")
+          "the poses as mapping and loop closing refined them, smoothed with a motion prior "
+          "when Tracking.smoothTrajectory is on.")
+      .def(
+          "tracked_trajectory",
+          [](PySystem& self) {
+            return ToArrays(
+                self.Call([](System& system) { return system.TrackedCameraTrajectory(); }));
+          },
+          "(timestamps, poses) as trajectory(), never smoothed.")
       .def(
           "keyframe_trajectory",
           [](PySystem& self) {
@@ -407,7 +415,8 @@ PYBIND11_MODULE(drvslam, m) {
           "(timestamps, poses) of the keyframes, as trajectory().")
       .def("write_trajectories", &PySystem::WriteTrajectories, py::arg("out_dir"),
            py::arg("format") = "tum",
-           "Writes OUT_DIR/CameraTrajectory and KeyFrameTrajectory in format 'tum' (.txt), "
+           "Writes OUT_DIR/CameraTrajectory, TrackedCameraTrajectory and KeyFrameTrajectory in "
+           "format 'tum' (.txt), "
            "'kitti' (.txt + _times.txt) or 'euroc' (.csv), byte for byte as `drvslam run "
            "--trajectory-format` writes them; returns the camera trajectory's path.")
       .def("stats", &PySystem::Stats,

@@ -52,6 +52,11 @@ def test_track_rgbd_returns_pose_and_state(sequence):
     stamps, poses = system.trajectory()
     assert stamps.shape == (TRACKED,) and poses.shape == (TRACKED, 4, 4)
     np.testing.assert_array_equal(stamps, [frame[0] for frame in frames])
+    # The saved trajectory is smoothed; the tracked one keeps the frames and stays within the
+    # per-frame scatter of it.
+    tracked_stamps, tracked_poses = system.tracked_trajectory()
+    np.testing.assert_array_equal(tracked_stamps, stamps)
+    assert np.abs(tracked_poses[:, :3, 3] - poses[:, :3, 3]).max() < 0.01
     key_stamps, key_poses = system.keyframe_trajectory()
     assert 1 <= len(key_stamps) <= TRACKED and key_poses.shape == (len(key_stamps), 4, 4)
     stats = system.stats()
@@ -135,6 +140,8 @@ def test_writes_trajectories_as_the_cli_formats(sequence, tmp_path):
     stamps, poses = read_tum(tmp_path / "tum" / "CameraTrajectory.txt")
     np.testing.assert_array_equal(stamps, [frame[0] for frame in frames])
     np.testing.assert_allclose(poses, system.trajectory()[1], atol=2e-9)
+    _, tracked = read_tum(tmp_path / "tum" / "TrackedCameraTrajectory.txt")
+    np.testing.assert_allclose(tracked, system.tracked_trajectory()[1], atol=2e-9)
 
     kitti = system.write_trajectories(str(tmp_path / "kitti"), "kitti")
     rows = np.loadtxt(kitti, ndmin=2)

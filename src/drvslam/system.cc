@@ -34,6 +34,7 @@
 #include "drvslam/tracking/feature_budget.h"
 #include "drvslam/tracking/frame_factory.h"
 #include "drvslam/tracking/tracker.h"
+#include "drvslam/tracking/trajectory_smoother.h"
 
 namespace drvslam {
 namespace {
@@ -109,6 +110,7 @@ struct System::Impl {
   void SaveMap(const std::string& path);
 
   Settings settings;
+  TrackerOptions tracker_options;
   SystemOptions options;
   Map map;
   FrameFactory frame_factory;
@@ -151,6 +153,7 @@ Settings ExtractionSettings(Settings settings, bool sequential) {
 System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_options,
                    const SystemOptions& options_in)
     : settings(settings_in),
+      tracker_options(tracker_options),
       options(options_in),
       frame_factory(ExtractionSettings(settings_in, options_in.sequential)),
       tracker(map, tracker_options, settings_in.camera.fps),
@@ -480,7 +483,18 @@ TrackResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double t
 
 void System::SaveMap(const std::string& path) const { impl_->SaveMap(path); }
 
-Trajectory System::CameraTrajectory() const { return impl_->tracker.Recorder().CameraTrajectory(); }
+Trajectory System::CameraTrajectory() const {
+  const Trajectory tracked = TrackedCameraTrajectory();
+  if (!impl_->tracker_options.smooth_trajectory) return tracked;
+  TrajectorySmoothingOptions smoothing;
+  smoothing.acceleration = impl_->tracker_options.smoothing_acceleration;
+  smoothing.angular_acceleration = impl_->tracker_options.smoothing_angular_acceleration;
+  return SmoothTrajectory(tracked, smoothing);
+}
+
+Trajectory System::TrackedCameraTrajectory() const {
+  return impl_->tracker.Recorder().CameraTrajectory();
+}
 
 Trajectory System::KeyFrameTrajectory() const {
   return drvslam::KeyFrameTrajectory(impl_->map.KeyFrames());

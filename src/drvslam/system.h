@@ -86,7 +86,11 @@ class System {
   void SaveMap(const std::string& path) const;
 
   // Read while mapping still runs, these reflect the map as it is at that moment.
+  // Every tracked frame's pose in the final map; smoothed with a motion prior when
+  // Tracking.smoothTrajectory is on (tracking/trajectory_smoother.h).
   Trajectory CameraTrajectory() const;
+  // The same poses as tracked, never smoothed.
+  Trajectory TrackedCameraTrajectory() const;
   Trajectory KeyFrameTrajectory() const;
   SystemStats Stats() const;
   const Map& GetMap() const;

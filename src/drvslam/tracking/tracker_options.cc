@@ -34,7 +34,18 @@ const OptionTable<TrackerOptions>& TrackerOptionTable() {
         .Bool("keyframeOcclusion", &T::keyframe_occlusion,
               "Keyframe rule: compare the inliers with the reference keyframe's points not "
               "hidden behind something nearer in the frame (1), or with all of them "
-              "(0, ORB-SLAM2).");
+              "(0, ORB-SLAM2).")
+        .Bool("smoothTrajectory", &T::smooth_trajectory,
+              "Smooth the saved camera trajectory with a constant-velocity motion prior, "
+              "weighing each pose by the frame-to-frame scatter measured in it (1), or save "
+              "the poses as tracked (0). The per-frame poses of a run are not changed.")
+        .Real("smoothingAcceleration", &T::smoothing_acceleration, Bounds::Above(0.0),
+              "smoothTrajectory: standard deviation of the camera's acceleration over one "
+              "frame interval, m/s².")
+        .Real("smoothingAngularAcceleration", &T::smoothing_angular_acceleration,
+              Bounds::Above(0.0),
+              "smoothTrajectory: standard deviation of the camera's angular acceleration over "
+              "one frame interval, rad/s².");
     return t;
   }();
   return table;

@@ -41,6 +41,14 @@ struct TrackerOptions {
   // so people walking in front of the scene do not ask for a keyframe every few frames.
   // false: ORB-SLAM2's rule, against all of them.
   bool keyframe_occlusion = true;
+  // Tracking.smoothTrajectory: the trajectory read at the end (System::CameraTrajectory, the
+  // saved CameraTrajectory) is smoothed with a constant-velocity motion prior
+  // (trajectory_smoother.h); the per-frame poses TrackRGBD returns are not.
+  bool smooth_trajectory = true;
+  // Tracking.smoothingAcceleration / smoothingAngularAcceleration: the prior's standard
+  // deviation of the camera's acceleration over one frame interval (m/s², rad/s²).
+  double smoothing_acceleration = 1.0;
+  double smoothing_angular_acceleration = 2.0;
 
   void Check() const;  // throws Error naming the bad key
 };
@@ -51,7 +59,8 @@ const OptionTable<TrackerOptions>& TrackerOptionTable();
 // Reads Tracking.minInitialPoints, Tracking.maxFramesBetweenKeyframes,
 // Tracking.newPointsPerKeyframe, Tracking.minInliers, Tracking.resetWhenLost and
 // Tracking.bowReferenceMatching, Tracking.realtimeQueuedKeyframes, Tracking.readoutTime,
-// Tracking.estimateReadout and Tracking.keyframeOcclusion.
+// Tracking.estimateReadout, Tracking.keyframeOcclusion, Tracking.smoothTrajectory,
+// Tracking.smoothingAcceleration and Tracking.smoothingAngularAcceleration.
 TrackerOptions LoadTrackerOptions(const SettingsFile& file);
 
 }  // namespace drvslam

@@ -200,6 +200,10 @@ std::string WriteRunTrajectories(const System& system, const std::string& out_di
       TrajectoryFilePath((folder / "CameraTrajectory").string(), format);
   WriteTrajectory(camera_path, system.CameraTrajectory(), format,
                   "drvslam camera trajectory (T_wc), every tracked frame");
+  // The poses as tracked, before the motion-prior smoothing (Tracking.smoothTrajectory).
+  WriteTrajectory(TrajectoryFilePath((folder / "TrackedCameraTrajectory").string(), format),
+                  system.TrackedCameraTrajectory(), format,
+                  "drvslam camera trajectory (T_wc) as tracked, before smoothing");
   WriteTrajectory(TrajectoryFilePath((folder / "KeyFrameTrajectory").string(), format),
                   system.KeyFrameTrajectory(), format, "drvslam keyframe trajectory (T_wc)");
   return camera_path;
