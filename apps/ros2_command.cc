@@ -39,8 +39,10 @@ void PrintSummary(const ros2::Ros2NodeSummary& summary, const std::string& out_d
   }
   std::printf("keyframes:   %zu, map points %zu\n", s.keyframes, s.map_points);
   if (summary.pairs_tracked > 0) {
-    std::printf("wrote:       %s/{CameraTrajectory.txt,KeyFrameTrajectory.txt,stats.json}%s\n",
-                out_dir.c_str(), s.dense ? " and the dense map, map.yaml, map.pgm" : "");
+    std::printf(
+        "wrote:       %s/{CameraTrajectory.txt,TrackedCameraTrajectory.txt,KeyFrameTrajectory.txt,"
+        "stats.json}%s\n",
+        out_dir.c_str(), s.dense ? " and the dense map, map.yaml, map.pgm" : "");
   }
 }
 

@@ -17,6 +17,10 @@ path gives almost none, the ground truth shows how little). The ATE of the estim
 --smooth frames (a centred window, same alignment) is the slow part: drift and bias that
 no per-frame filter can remove.
 
+When the run saved its poses as tracked beside the smoothed trajectory
+(TrackedCameraTrajectory.txt), their ATE and per-frame noise are printed too, with the same
+alignment.
+
 And it says whether the error comes from the movers at all: the RMS error (same alignment) over
 the frames with no potentially-moving object in view, against the frames with one or more. When
 both are alike, the people are not what limits the run; the camera's own tracking is.
@@ -196,6 +200,17 @@ def main():
     print("per-frame noise %.2f cm (second difference RMS %.2f cm, ground truth's %.2f cm); "
           "averaged over %d frames: ATE %.2f cm" % (100 * noise, 100 * jitter, 100 * truth_jitter,
                                                    args.smooth, 100 * slow))
+    # The saved trajectory is smoothed (Tracking.smoothTrajectory); the tracker's own per-frame
+    # noise is in the poses as tracked, saved beside it.
+    tracked_path = os.path.join(run, "TrackedCameraTrajectory.txt")
+    if os.path.exists(tracked_path):
+        tracked = per_frame_errors(read_tum(tracked_path), truth, alignment)
+        if tracked:
+            jitter, truth_jitter, noise, _ = noise_and_slow_error(
+                [(t, q, g) for t, _, q, g in tracked], args.smooth)
+            print("as tracked (TrackedCameraTrajectory.txt): ATE %.2f cm, per-frame noise %.2f cm "
+                  "(second difference RMS %.2f cm)" % (100 * rms([e for _, e, _, _ in tracked]),
+                                                       100 * noise, 100 * jitter))
 
     by_objects = error_by_objects_in_view(errors, log)
     if by_objects:

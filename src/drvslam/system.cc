@@ -150,13 +150,13 @@ Settings ExtractionSettings(Settings settings, bool sequential) {
 
 }  // namespace
 
-System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_options,
+System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_options_in,
                    const SystemOptions& options_in)
     : settings(settings_in),
-      tracker_options(tracker_options),
+      tracker_options(tracker_options_in),
       options(options_in),
       frame_factory(ExtractionSettings(settings_in, options_in.sequential)),
-      tracker(map, tracker_options, settings_in.camera.fps),
+      tracker(map, tracker_options_in, settings_in.camera.fps),
       local_mapper(map, options_in.mapping, options_in.sequential, &timings) {
   // The one place the process's OpenCV thread pool is set (core/thread_budget.h).
   ApplyOpenCvThreadBudget(ChooseOpenCvThreads(
@@ -484,12 +484,14 @@ TrackResult System::TrackRGBD(const cv::Mat& bgr, const cv::Mat& depth, double t
 void System::SaveMap(const std::string& path) const { impl_->SaveMap(path); }
 
 Trajectory System::CameraTrajectory() const {
-  const Trajectory tracked = TrackedCameraTrajectory();
-  if (!impl_->tracker_options.smooth_trajectory) return tracked;
+  if (!impl_->tracker_options.smooth_trajectory) return TrackedCameraTrajectory();
+  std::vector<std::size_t> resumed_after_loss;
+  const Trajectory tracked = impl_->tracker.Recorder().CameraTrajectory(&resumed_after_loss);
   TrajectorySmoothingOptions smoothing;
   smoothing.acceleration = impl_->tracker_options.smoothing_acceleration;
   smoothing.angular_acceleration = impl_->tracker_options.smoothing_angular_acceleration;
-  return SmoothTrajectory(tracked, smoothing);
+  if (impl_->settings.camera.fps > 0) smoothing.frame_interval_s = 1.0 / impl_->settings.camera.fps;
+  return SmoothTrajectory(tracked, smoothing, resumed_after_loss);
 }
 
 Trajectory System::TrackedCameraTrajectory() const {

@@ -185,3 +185,36 @@ TEST(KeyFrameCullingTest, TheTrajectoryDoesNotKeepRemovedKeyFramesOrTheirPoints)
 }  // namespace
 }  // namespace test
 }  // namespace drvslam
+
+namespace drvslam {
+namespace test {
+namespace {
+
+// The recorder names the frames tracked again after a loss, where the saved trajectory's
+// smoothing must assume no motion; a loss before the first tracked frame names none.
+TEST(TrajectoryRecorderTest, NamesTheFramesTrackedAgainAfterALoss) {
+  SyntheticScene scene;
+  SyntheticMap map;
+  BuildHover(scene, map, 1.5, 2.5);
+  const std::shared_ptr<KeyFrame>& keyframe = map.keyframes[0];
+  TrajectoryRecorder recorder;
+  recorder.AddLost(0.0);
+  recorder.AddTracked(1.0, keyframe->Pose(), keyframe);
+  recorder.AddTracked(2.0, keyframe->Pose(), keyframe);
+  recorder.AddLost(3.0);
+  recorder.AddLost(4.0);
+  recorder.AddTracked(5.0, keyframe->Pose(), keyframe);
+  recorder.AddTracked(6.0, keyframe->Pose(), keyframe);
+  recorder.AddLost(7.0);
+  recorder.AddTracked(8.0, keyframe->Pose(), keyframe);
+  std::vector<std::size_t> resumed;
+  const Trajectory trajectory = recorder.CameraTrajectory(&resumed);
+  ASSERT_EQ(trajectory.size(), 5u);
+  EXPECT_EQ(resumed, (std::vector<std::size_t>{2, 4}));
+  EXPECT_EQ(trajectory[2].timestamp, 5.0);
+  EXPECT_EQ(recorder.CameraTrajectory().size(), trajectory.size());
+}
+
+}  // namespace
+}  // namespace test
+}  // namespace drvslam

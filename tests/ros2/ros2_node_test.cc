@@ -254,7 +254,7 @@ TEST(Ros2NodeTest, TracksImageTopicsAndPublishesPosesTfAndGrid) {
   std::printf("%s", log.c_str());
 
   // Poses, in the sequence's time, against the ground truth: the received odometry, and the
-  // trajectory the node wrote (local BA refined), both stamped with the wall clock.
+  // trajectory the node wrote (local BA refined, then smoothed), both stamped with the wall clock.
   const auto sequence_time = [&](double stamp_s) {
     const auto at =
         sequence_time_of_stamp.lower_bound(static_cast<std::int64_t>(stamp_s * 1e9) - 1000000);
@@ -272,7 +272,7 @@ TEST(Ros2NodeTest, TracksImageTopicsAndPublishesPosesTfAndGrid) {
   WriteTumTrajectory(written_trajectory.string(), written);
   const AteResult ate = test::AteAgainstGroundTruth(sequence, trajectory.string());
   const AteResult written_ate = test::AteAgainstGroundTruth(sequence, written_trajectory.string());
-  std::printf("ATE of the node's CameraTrajectory.txt (poses after local BA): %.2f cm RMSE\n",
+  std::printf("ATE of the node's CameraTrajectory.txt (after local BA, smoothed): %.2f cm RMSE\n",
               100.0 * written_ate.errors.rmse);
   std::printf(
       "frames published: %zu; odometry received: %zu (%zu distinct stamps), /tf: %zu, grids: %zu\n"

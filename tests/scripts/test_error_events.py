@@ -126,3 +126,30 @@ def test_error_split_by_people_in_view(tmp_path):
 def test_no_split_without_an_objects_column(tmp_path):
     write_run(tmp_path)
     assert "potentially-moving" not in script_output(tmp_path)
+
+
+def test_reports_the_poses_as_tracked_beside_a_smoothed_trajectory(tmp_path):
+    # The run's saved trajectory has no noise (as if smoothed); the poses as tracked beside it
+    # carry the noise, and the script reports it from them.
+    write_run(tmp_path)
+    noisy = (tmp_path / "CameraTrajectory.txt").read_text()
+    (tmp_path / "TrackedCameraTrajectory.txt").write_text(noisy)
+    clean = []
+    for i in range(FRAMES):
+        g = truth_position(i, 0.3)
+        clean.append("%.6f %.9f %.9f %.9f 0 0 0 1" % (1000.0 + i * PERIOD, *g))
+    (tmp_path / "CameraTrajectory.txt").write_text("\n".join(clean) + "\n")
+    stdout = script_output(tmp_path)
+    found = re.search(r"as tracked \(TrackedCameraTrajectory.txt\): ATE ([\d.]+) cm, per-frame "
+                      r"noise ([\d.]+) cm", stdout)
+    assert found, stdout
+    ate, noise = (float(v) for v in found.groups())
+    expected_noise_cm = 100 * NOISE_M * math.sqrt(3)
+    assert abs(noise - expected_noise_cm) < 0.08 * expected_noise_cm
+    assert ate > 0.9
+    assert re.search(r"ATE RMSE 0.00 cm", stdout), stdout
+
+
+def test_no_tracked_line_without_the_tracked_file(tmp_path):
+    write_run(tmp_path)
+    assert "as tracked" not in script_output(tmp_path)

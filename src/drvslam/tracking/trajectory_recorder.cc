@@ -98,10 +98,22 @@ std::size_t TrajectoryRecorder::LostAfterInitialization() const {
 }
 
 drvslam::Trajectory TrajectoryRecorder::CameraTrajectory() const {
+  return CameraTrajectory(nullptr);
+}
+
+drvslam::Trajectory TrajectoryRecorder::CameraTrajectory(
+    std::vector<std::size_t>* resumed_after_loss) const {
   std::lock_guard<std::mutex> lock(mutex_);
   drvslam::Trajectory trajectory;
+  if (resumed_after_loss) resumed_after_loss->clear();
+  bool after_loss = false;
   for (const Entry& entry : entries_) {
+    if (!entry.tracked) after_loss = true;
     if (!entry.tracked || entry.map != map_) continue;
+    if (after_loss && resumed_after_loss && !trajectory.empty()) {
+      resumed_after_loss->push_back(trajectory.size());
+    }
+    after_loss = false;
     const SE3 T_cw = Resolve(entry.T_cr, entry.reference_id);
     trajectory.push_back({entry.timestamp, T_cw.Inverse()});
   }

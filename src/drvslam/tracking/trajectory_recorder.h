@@ -40,6 +40,9 @@ class TrajectoryRecorder {
   // keyframes' current poses (a reference keyframe removed since is replaced by its spanning-tree
   // parent).
   drvslam::Trajectory CameraTrajectory() const;
+  // The same, and the positions in it of the frames tracked right after a lost one (tracking
+  // resumed by relocalization): no motion is known across them.
+  drvslam::Trajectory CameraTrajectory(std::vector<std::size_t>* resumed_after_loss) const;
 
  private:
   struct Entry {

@@ -1,6 +1,6 @@
 // RunSequence: drvslam's main job on a TUM-layout folder: settings resolution, the frame loop
-// through System, and the outputs (CameraTrajectory.txt, KeyFrameTrajectory.txt, stats.json,
-// sparse_map.ply: the map points' positions).
+// through System, and the outputs (CameraTrajectory.txt, TrackedCameraTrajectory.txt,
+// KeyFrameTrajectory.txt, stats.json, sparse_map.ply: the map points' positions).
 // Whatever was tracked is written even when a frame fails to load or the run is interrupted.
 #pragma once
 
@@ -84,7 +84,8 @@ struct RunSetup {
 // settings key or option at fault. RunSequence and the Python bindings build their System so.
 RunSetup PrepareRun(const RunOptions& options);
 
-// Writes OUT/CameraTrajectory and OUT/KeyFrameTrajectory of `system` in `format` (.txt, .csv
+// Writes OUT/CameraTrajectory (smoothed when Tracking.smoothTrajectory is on),
+// OUT/TrackedCameraTrajectory and OUT/KeyFrameTrajectory of `system` in `format` (.txt, .csv
 // for euroc; kitti also *_times.txt), as `drvslam run` does after System::Shutdown; returns the
 // camera trajectory's path. Throws Error when a file cannot be written.
 std::string WriteRunTrajectories(const System& system, const std::string& out_dir,
