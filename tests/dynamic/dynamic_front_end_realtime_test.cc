@@ -220,6 +220,46 @@ TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames)
   }
 }
 
+TEST_F(DynamicFrontEndTest, ALongCarriedCrowdGetsOneKeyFramePerCarryFramesAndOne) {
+  // The network keeps up one frame late: frame f is tracked through frame f-1's masks, so the
+  // masks never age out. With Segmentation.carryFrames 2 and the person counting as a crowd,
+  // frames 1-2 are vetoed and frame 3 may become a keyframe. When it does (NoteKeyFrame), the
+  // count starts again: frames 4-5 are vetoed, 6 may be one. Without a keyframe the veto stays
+  // off, so a network that never catches up does not stop mapping.
+  const int frames = 7;
+  const Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
+  for (const bool keyframe_when_free : {true, false}) {
+    std::set<std::size_t> held;
+    for (std::size_t f = 1; f < static_cast<std::size_t>(frames); ++f) held.insert(f);
+    auto segmenter = std::make_shared<HoldingSegmenter>(sequence.masks, 0, held);
+    DynamicFrontEndConfig config;
+    config.segmenter = segmenter;
+    config.realtime = true;
+    config.segmentation.carry_frames = 2;
+    config.options.large_share = 0.01;
+    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    std::vector<bool> vetoed;
+    for (int f = 0; f < frames; ++f) {
+      BeginGatedFrame(stage, sequence, f);
+      stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+      vetoed.push_back(stage.LastReport().crowd_carried);
+      if (f > 0) ASSERT_FALSE(stage.LastReport().own_masks) << "frame " << f;
+      stage.NoteKeyFrame(keyframe_when_free && f > 0 && !vetoed.back());
+      // Frame f's masks arrive before frame f+1 is tracked.
+      segmenter->Release(static_cast<std::size_t>(f));
+      for (int wait = 0;
+           wait < 2000 && stage.Stats().segmentation->segmented < static_cast<std::size_t>(f + 1);
+           ++wait) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    }
+    const std::vector<bool> expected =
+        keyframe_when_free ? std::vector<bool>{false, true, true, false, true, true, false}
+                           : std::vector<bool>{false, true, true, false, false, false, false};
+    EXPECT_EQ(vetoed, expected) << "keyframes when free: " << keyframe_when_free;
+  }
+}
+
 TEST_F(DynamicFrontEndTest, FlowOnTheHelperThreadGivesTheSameFrames) {
   // Threaded, waiting for each frame's masks: only where the flow is computed differs.
   const auto near_x = [](int f) { return f < 3 ? 0.0 : 0.03 * (f - 2); };
