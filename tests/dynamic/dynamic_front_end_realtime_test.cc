@@ -252,6 +252,8 @@ TEST_F(DynamicFrontEndTest, ALongCarriedCrowdGetsOneKeyFramePerCarryFramesAndOne
            ++wait) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       }
+      ASSERT_GE(stage.Stats().segmentation->segmented, static_cast<std::size_t>(f + 1))
+          << "frame " << f << "'s masks never came";
     }
     const std::vector<bool> expected =
         keyframe_when_free ? std::vector<bool>{false, true, true, false, true, true, false}

@@ -238,7 +238,8 @@ cv::Mat DynamicFrontEnd::MovingSkipMask() {
 void DynamicFrontEnd::NoteKeyFrame(bool became_keyframe) {
   if (!became_keyframe) return;
   // A keyframe made once the crowd veto ran out starts its count again: while a crowd is seen
-  // through carried masks, at most one keyframe per carry_frames + 1 frames.
+  // through carried masks, at most one keyframe per carry_frames + 1 frames. (A map's first
+  // keyframe, which no veto holds back, restarts it too: at most carry_frames frames more.)
   frames_crowd_carried_ = 0;
   ++stats_.keyframes;
   if (report_.keyframe_likely) ++stats_.keyframes_expected;

@@ -188,7 +188,8 @@ class DynamicFrontEnd {
   // frame's), dilated by Dynamic.maskDilation. Empty when there is nothing to skip or
   // Dynamic.skipMovingExtraction is off.
   cv::Mat MovingSkipMask();
-  // After tracking the frame: whether it became a keyframe (for the keyframe statistics).
+  // After tracking the frame: whether it became a keyframe (for the keyframe statistics; a
+  // keyframe also restarts the count of a crowd seen through carried masks).
   void NoteKeyFrame(bool became_keyframe);
   // `frame` was extracted from `bgr` (the image BeginFrame got) with `depth` (CV_32FC1 metres).
   // Returns the frame with the removed features taken out (same id and timestamp). The paper's
@@ -205,7 +206,8 @@ class DynamicFrontEnd {
   // unlabelled-motion evidence was weighed and not believed (blurred, misfit, camera failure);
   // with one (--realtime), the masks of movers in view aged out before the network's next ones
   // came, or movers cover more than Dynamic.largeShare of the view and their masks are carried
-  // ones, each for at most Segmentation.carryFrames frames in a row. In a crowd, keyframes from
+  // ones, each for at most Segmentation.carryFrames frames in a row (the crowd: since the last
+  // keyframe). In a crowd, keyframes from
   // such frames mapped the people, and tracking then followed them
   // (docs/dynamic-handling.md#frames-without-believed-evidence, docs/real-time.md).
   bool MoversUnchecked() const;
@@ -281,7 +283,7 @@ class DynamicFrontEnd {
   Frame RemoveDynamicFeatures(Frame frame, const cv::Mat& depth, const MotionRegions& regions,
                               const std::vector<ObjectEvidence>& objects, RemovalOutcome* outcome);
   // --realtime: whether this frame is a crowd seen through carried masks (crowd_carried), for
-  // at most Segmentation.carryFrames frames in a row.
+  // at most Segmentation.carryFrames frames since the crowd began or the last keyframe.
   void JudgeCarriedCrowd(bool large_share);
   // The frame's report fields and the run's statistics.
   void RecordStatistics(const MotionRegions& regions, const std::vector<ObjectEvidence>& objects,
@@ -336,7 +338,7 @@ class DynamicFrontEnd {
   double carried_from_timestamp_ = 0.0;
   bool carried_movers_ = false;   // the carried masks' source frame had potentially-moving objects
   int frames_expired_ = 0;        // consecutive frames whose movers' masks had aged out
-  int frames_crowd_carried_ = 0;  // consecutive frames of a crowd seen through carried masks
+  int frames_crowd_carried_ = 0;  // crowd-through-carried-masks frames since it began or a keyframe
   MotionConsistency consistency_;
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;

@@ -155,8 +155,8 @@ void DynamicFrontEnd::JudgeCarriedCrowd(bool large_share) {
   // the most of them, and the removal keeps the features of those not seen moving. A keyframe
   // made there maps people. Keyframes wait for the network's own masks of a frame, but not
   // longer than carry_frames frames: a network that never keeps up must not stop mapping. The
-  // count starts again after each keyframe (NoteKeyFrame), so a long crowd gets one keyframe
-  // per carry_frames + 1 frames, not one every other frame as its inliers fall.
+  // count starts again after each keyframe (NoteKeyFrame), so a long crowd gets at most one
+  // keyframe per carry_frames + 1 frames, not one every other frame as its inliers fall.
   if (config_.realtime && large_share && !report_.own_masks) {
     if (++frames_crowd_carried_ <= config_.segmentation.carry_frames) {
       report_.crowd_carried = true;
