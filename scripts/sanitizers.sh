@@ -73,6 +73,7 @@ case "$kind" in
       eval_cli_test mapping_test local_bundle_adjustment_test loop_closing_test io_test
       semantic_test feature_test core_test eval_test match_test optim_test pose_graph_test
       rigid_transform_ransac_test tracking_test tracking_mapping_handoff_test map_file_test
+      tracking_trajectory_smoother_test
     )
     export ASAN_OPTIONS="detect_leaks=1:log_path=REPORTS/asan:${ASAN_OPTIONS:-}"
     # OpenCV's gPhoto2 camera backend off. cv::VideoCapture, handed a file no file backend reads
