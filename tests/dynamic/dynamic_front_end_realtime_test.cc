@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "drvslam/dynamic/dynamic_front_end.h"
@@ -19,6 +20,17 @@ using test::HoldingSegmenter;
 using test::Render;
 using test::ScriptedSegmenter;
 using test::Sequence;
+
+// --realtime over `network`, carrying masks for `carry_frames` frames, where the rendered
+// person (more than 0.01 of the image) counts as a crowd (Dynamic.largeShare 0.01).
+DynamicFrontEndConfig CrowdConfig(std::shared_ptr<Segmenter> network, int carry_frames) {
+  DynamicFrontEndConfig config;
+  config.segmenter = std::move(network);
+  config.realtime = true;
+  config.segmentation.carry_frames = carry_frames;
+  config.options.large_share = 0.01;
+  return config;
+}
 
 TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNever) {
   // A 100 ms network. Frame 1 is expected to become a keyframe, but frame 0 is ahead of it on
@@ -190,7 +202,8 @@ TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames)
   // 0's masks carried (Segmentation.carryFrames 4). With Dynamic.largeShare below the person's
   // share of the image that is a crowd seen through carried masks: no keyframe from frames
   // 1-4. At the default share (the person covers less) keyframes go on; frame 5 has no masks
-  // left and is vetoed for that reason only.
+  // left and is vetoed for that reason, but only there: after the crowd's four vetoed frames
+  // the shared bound (carryFrames in a row) lets frame 5 be a keyframe.
   const int frames = 6;
   const Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
   for (const double large_share : {0.01, 0.3}) {
@@ -212,10 +225,46 @@ TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames)
       if (carried) ASSERT_LT(report.share, 0.3) << "frame " << f;
       const bool carried_crowd = crowd && carried;
       EXPECT_EQ(report.crowd_carried, carried_crowd) << "share " << large_share << ", frame " << f;
-      EXPECT_EQ(stage.MoversUnchecked(), carried_crowd || f == 5)
+      EXPECT_EQ(stage.MoversUnchecked(), carried_crowd || (!crowd && f == 5))
           << "share " << large_share << ", frame " << f;
     }
     EXPECT_EQ(stage.Stats().frames_crowd_carried, crowd ? 4u : 0u) << "share " << large_share;
+    segmenter->Open();
+  }
+}
+
+TEST_F(DynamicFrontEndTest, TheCrowdAndAgedOutMasksShareOneBoundOnVetoedFrames) {
+  // The network stalls after frame 0 (Segmentation.carryFrames 2, the person counting as a
+  // crowd): frames 1-2 see the crowd through carried masks, and from frame 3 on its masks have
+  // aged out. Both reasons count against one bound of two vetoed frames in a row, so the
+  // change of reason at frame 3 does not start a new count: frame 3 may become a keyframe.
+  // When it does, frames 4-5 are vetoed (aged out) and frame 6 may be one; without keyframes
+  // the veto stays off. With a count per reason frames 1-4 were all vetoed, and a network
+  // whose masks alternately came late and aged out could stop mapping for a whole crowd.
+  const int frames = 8;
+  const Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
+  for (const bool keyframe_when_free : {true, false}) {
+    auto segmenter = std::make_shared<GatedSegmenter>(sequence.masks);
+    DynamicFrontEnd stage(CrowdConfig(segmenter, 2), 1000, map_, nullptr);
+    std::vector<bool> vetoed;
+    for (int f = 0; f < frames; ++f) {
+      BeginGatedFrame(stage, sequence, f);
+      stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+      const DynamicFrameReport& report = stage.LastReport();
+      if (f >= 1 && f <= 2) ASSERT_FALSE(report.instances.empty()) << "frame " << f;
+      if (f >= 3) ASSERT_TRUE(report.instances.empty()) << "frame " << f;
+      vetoed.push_back(stage.MoversUnchecked());
+      stage.NoteKeyFrame(keyframe_when_free && f > 0 && !vetoed.back());
+    }
+    const std::vector<bool> expected =
+        keyframe_when_free
+            ? std::vector<bool>{false, true, true, false, true, true, false, true}
+            : std::vector<bool>{false, true, true, false, false, false, false, false};
+    EXPECT_EQ(vetoed, expected) << "keyframes when free: " << keyframe_when_free;
+    const DynamicStats stats = stage.Stats();
+    EXPECT_EQ(stats.frames_crowd_carried, 2u) << "keyframes when free: " << keyframe_when_free;
+    EXPECT_EQ(stats.frames_masks_expired, keyframe_when_free ? 3u : 0u)
+        << "keyframes when free: " << keyframe_when_free;
     segmenter->Open();
   }
 }
@@ -232,12 +281,7 @@ TEST_F(DynamicFrontEndTest, ALongCarriedCrowdGetsOneKeyFramePerCarryFramesAndOne
     std::set<std::size_t> held;
     for (std::size_t f = 1; f < static_cast<std::size_t>(frames); ++f) held.insert(f);
     auto segmenter = std::make_shared<HoldingSegmenter>(sequence.masks, 0, held);
-    DynamicFrontEndConfig config;
-    config.segmenter = segmenter;
-    config.realtime = true;
-    config.segmentation.carry_frames = 2;
-    config.options.large_share = 0.01;
-    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    DynamicFrontEnd stage(CrowdConfig(segmenter, 2), 1000, map_, nullptr);
     std::vector<bool> vetoed;
     for (int f = 0; f < frames; ++f) {
       BeginGatedFrame(stage, sequence, f);

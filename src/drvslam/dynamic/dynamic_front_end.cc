@@ -237,10 +237,10 @@ cv::Mat DynamicFrontEnd::MovingSkipMask() {
 
 void DynamicFrontEnd::NoteKeyFrame(bool became_keyframe) {
   if (!became_keyframe) return;
-  // A keyframe made once the crowd veto ran out starts its count again: while a crowd is seen
-  // through carried masks, at most one keyframe per carry_frames + 1 frames. (A map's first
-  // keyframe, which no veto holds back, restarts it too: at most carry_frames frames more.)
-  frames_crowd_carried_ = 0;
+  // A keyframe made once the veto ran out starts its count again: while movers go unchecked,
+  // at most one keyframe per carry_frames + 1 frames. (A map's first keyframe, which no veto
+  // holds back, restarts it too: at most carry_frames frames more.)
+  frames_vetoed_ = 0;
   ++stats_.keyframes;
   if (report_.keyframe_likely) ++stats_.keyframes_expected;
   if (report_.own_masks) ++stats_.keyframes_own_masks;
@@ -261,6 +261,7 @@ Frame DynamicFrontEnd::Filter(Frame frame, const cv::Mat& bgr, const cv::Mat& de
   Record("removal", removal_watch.ElapsedMs());
 
   JudgeCarriedCrowd(removal.plan.large_share);
+  BoundMoverVetoes();
   RecordStatistics(regions, objects, removal, extracted->Keypoints().size());
   RememberFrame(std::move(regions), std::move(objects), std::move(removal.regions), extracted,
                 depth, removal.plan.share);

@@ -206,9 +206,9 @@ class DynamicFrontEnd {
   // unlabelled-motion evidence was weighed and not believed (blurred, misfit, camera failure);
   // with one (--realtime), the masks of movers in view aged out before the network's next ones
   // came, or movers cover more than Dynamic.largeShare of the view and their masks are carried
-  // ones, each for at most Segmentation.carryFrames frames in a row (the crowd: since the last
-  // keyframe). In a crowd, keyframes from
-  // such frames mapped the people, and tracking then followed them
+  // ones; for at most Segmentation.carryFrames such frames in a row, either reason, since the
+  // last keyframe. In a crowd, keyframes from such frames mapped the people, and tracking then
+  // followed them
   // (docs/dynamic-handling.md#frames-without-believed-evidence, docs/real-time.md).
   bool MoversUnchecked() const;
   DynamicStats Stats() const;
@@ -282,9 +282,12 @@ class DynamicFrontEnd {
   // regions, the feature floor; returns the frame without the removed features.
   Frame RemoveDynamicFeatures(Frame frame, const cv::Mat& depth, const MotionRegions& regions,
                               const std::vector<ObjectEvidence>& objects, RemovalOutcome* outcome);
-  // --realtime: whether this frame is a crowd seen through carried masks (crowd_carried), for
-  // at most Segmentation.carryFrames frames since the crowd began or the last keyframe.
+  // --realtime: whether this frame is a crowd seen through carried masks (crowd_carried).
   void JudgeCarriedCrowd(bool large_share);
+  // --realtime: keeps the frame's vetoes (masks_expired, crowd_carried) for at most
+  // Segmentation.carryFrames frames in a row, both reasons counted together, since the last
+  // keyframe or the last frame with neither; counts the kept ones in the statistics.
+  void BoundMoverVetoes();
   // The frame's report fields and the run's statistics.
   void RecordStatistics(const MotionRegions& regions, const std::vector<ObjectEvidence>& objects,
                         const RemovalOutcome& removal, std::size_t features_extracted);
@@ -336,9 +339,10 @@ class DynamicFrontEnd {
   std::deque<std::vector<PointMotion>> track_history_;
   std::optional<std::size_t> carried_from_;
   double carried_from_timestamp_ = 0.0;
-  bool carried_movers_ = false;   // the carried masks' source frame had potentially-moving objects
-  int frames_expired_ = 0;        // consecutive frames whose movers' masks had aged out
-  int frames_crowd_carried_ = 0;  // crowd-through-carried-masks frames since it began or a keyframe
+  bool carried_movers_ = false;  // the carried masks' source frame had potentially-moving objects
+  // Consecutive frames whose movers went unchecked (masks aged out or a carried crowd), since
+  // the last keyframe or frame with neither.
+  int frames_vetoed_ = 0;
   MotionConsistency consistency_;
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;

@@ -84,7 +84,6 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
     carried_from_ = next_index_;
     carried_from_timestamp_ = timestamp;
     carried_movers_ = AnyPotentialMover(out.instances, classes_.get());
-    frames_expired_ = 0;
     masks_->RecordFresh();
     Record("segmentation_wait", watch.ElapsedMs());
     Record("segmentation", newest.masks->segment_ms);
@@ -119,15 +118,9 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   const int carry_frames = config_.segmentation.carry_frames;
   if (age > static_cast<std::size_t>(carry_frames)) {
     out.instances.clear();
-    // Movers were in view and nothing says where they are now. Keyframes wait for the
-    // network's next masks, but not longer than carry_frames more frames: a network that late
-    // must not stop mapping.
-    if (carried_movers_ && ++frames_expired_ <= carry_frames) {
-      report_.masks_expired = true;
-      ++stats_.frames_masks_expired;
-    }
-  } else {
-    frames_expired_ = 0;
+    // Movers were in view and nothing says where they are now: keyframes wait for the
+    // network's next masks, within the bound BoundMoverVetoes sets.
+    report_.masks_expired = carried_movers_;
   }
   const double carry_ms = watch.ElapsedMs();
   masks_->RecordCarried(age, (timestamp - carried_from_timestamp_) * 1000.0, carry_ms);
@@ -153,18 +146,28 @@ void DynamicFrontEnd::CompleteMasks(const cv::Mat& depth, MotionRegions* regions
 void DynamicFrontEnd::JudgeCarriedCrowd(bool large_share) {
   // Where movers fill much of the view, carried masks (several frames old at camera rate) miss
   // the most of them, and the removal keeps the features of those not seen moving. A keyframe
-  // made there maps people. Keyframes wait for the network's own masks of a frame, but not
-  // longer than carry_frames frames: a network that never keeps up must not stop mapping. The
-  // count starts again after each keyframe (NoteKeyFrame), so a long crowd gets at most one
-  // keyframe per carry_frames + 1 frames, not one every other frame as its inliers fall.
-  if (config_.realtime && large_share && !report_.own_masks) {
-    if (++frames_crowd_carried_ <= config_.segmentation.carry_frames) {
-      report_.crowd_carried = true;
-      ++stats_.frames_crowd_carried;
-    }
-  } else {
-    frames_crowd_carried_ = 0;
+  // made there maps people, so such a frame is vetoed, within the bound BoundMoverVetoes sets.
+  report_.crowd_carried = config_.realtime && large_share && !report_.own_masks;
+}
+
+void DynamicFrontEnd::BoundMoverVetoes() {
+  // Keyframes wait for the network's masks, but a network that never keeps up must not stop
+  // mapping: at most carry_frames vetoed frames in a row, for either reason, and the count
+  // starts again only after a keyframe (NoteKeyFrame) or a frame with neither reason. One
+  // count for both: with masks always 9-16 frames old (carryFrames 8) a crowd would otherwise
+  // alternate "carried" and "aged out", each reason restarting the other's count, and no
+  // keyframe would come for as long as the crowd lasted.
+  if (!report_.masks_expired && !report_.crowd_carried) {
+    frames_vetoed_ = 0;
+    return;
   }
+  if (++frames_vetoed_ > config_.segmentation.carry_frames) {
+    report_.masks_expired = false;
+    report_.crowd_carried = false;
+    return;
+  }
+  if (report_.masks_expired) ++stats_.frames_masks_expired;
+  if (report_.crowd_carried) ++stats_.frames_crowd_carried;
 }
 
 }  // namespace drvslam
