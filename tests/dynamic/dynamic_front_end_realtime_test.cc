@@ -197,6 +197,46 @@ TEST_F(DynamicFrontEndTest, RealtimeMasksOfMoversThatAgeOutVetoKeyFramesForABoun
   }
 }
 
+TEST_F(DynamicFrontEndTest, RealtimeMasksOfASlowNetworkAreCarriedUntilItStalls) {
+  // Segmentation.carryFrames 2. Frame 0 has its own masks; frame 1's pass ends only after
+  // frame 3 was tracked, so its masks come three frames late, later than carryFrames. They
+  // are still carried (from frame 4 on): the network is slow, not stalled. Frame 0's masks
+  // expire at frame 3, two frames after frame 0 without newer ones, and frame 1's at frame 7,
+  // two frames after frame 4, where they came. Masks older than carryFrames still keep
+  // keyframes waiting: frames 3 and 4 (the bound of two in a row, no keyframe between).
+  const int frames = 9;
+  const Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
+  std::set<std::size_t> held;
+  for (std::size_t f = 1; f < static_cast<std::size_t>(frames); ++f) held.insert(f);
+  auto segmenter = std::make_shared<HoldingSegmenter>(sequence.masks, 0, held);
+  DynamicFrontEndConfig config;
+  config.segmenter = segmenter;
+  config.realtime = true;
+  config.segmentation.carry_frames = 2;
+  DynamicFrontEnd stage(config, 1000, map_, nullptr);
+  std::vector<bool> has_masks;
+  std::vector<bool> vetoed;
+  for (int f = 0; f < frames; ++f) {
+    BeginGatedFrame(stage, sequence, f);
+    stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
+    has_masks.push_back(!stage.LastReport().instances.empty());
+    vetoed.push_back(stage.MoversUnchecked());
+    if (f == 3) {
+      // Frame 1's pass ends; the network then takes frame 3, which stays held.
+      segmenter->Release(1);
+      for (int wait = 0; wait < 2000 && stage.Stats().segmentation->segmented < 2; ++wait) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+      ASSERT_EQ(stage.Stats().segmentation->segmented, 2u) << "frame 1's masks never came";
+    }
+  }
+  EXPECT_EQ(has_masks,
+            (std::vector<bool>{true, true, true, false, true, true, true, false, false}));
+  EXPECT_EQ(vetoed,
+            (std::vector<bool>{false, false, false, true, true, false, false, false, false}));
+  for (std::size_t f = 1; f < static_cast<std::size_t>(frames); ++f) segmenter->Release(f);
+}
+
 TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames) {
   // Frame 0 is segmented; the network then stalls, so frames 1-4 see the person through frame
   // 0's masks carried (Segmentation.carryFrames 4). With Dynamic.largeShare below the person's

@@ -334,10 +334,11 @@ class DynamicFrontEnd {
   bool carry_objects_ = false;
   ObjectMaskCarrier carrier_;
   // Objects propagation: each recent frame's flow tracks from the frame before it (newest
-  // last, at most Segmentation.carryFrames), and the segmented frame the current carried masks
-  // came from.
+  // last, at most twice Segmentation.carryFrames), and the segmented frame the current carried
+  // masks came from.
   std::deque<std::vector<PointMotion>> track_history_;
   std::optional<std::size_t> carried_from_;
+  std::size_t delivered_lag_ = 0;  // how many frames old the carried masks were when they came
   double carried_from_timestamp_ = 0.0;
   bool carried_movers_ = false;  // the carried masks' source frame had potentially-moving objects
   // Consecutive frames whose movers went unchecked (masks aged out or a carried crowd), since

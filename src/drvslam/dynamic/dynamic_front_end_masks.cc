@@ -69,9 +69,10 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   const Stopwatch watch;
   std::vector<PointMotion> motions = PointMotionsOf(tracks);
   track_history_.push_back(std::move(motions));
-  while (track_history_.size() > static_cast<std::size_t>(config_.segmentation.carry_frames)) {
-    track_history_.pop_front();
-  }
+  // Late masks are carried from their own frame: a network slower than carry_frames frames
+  // (a loaded machine) still delivers masks, up to twice that late.
+  const std::size_t history = 2 * static_cast<std::size_t>(config_.segmentation.carry_frames);
+  while (track_history_.size() > history) track_history_.pop_front();
   AwaitKeyFrameMasks();
   Segmentation out;
   out.timestamp = timestamp;
@@ -84,6 +85,7 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
     carried_from_ = next_index_;
     carried_from_timestamp_ = timestamp;
     carried_movers_ = AnyPotentialMover(out.instances, classes_.get());
+    delivered_lag_ = 0;
     masks_->RecordFresh();
     Record("segmentation_wait", watch.ElapsedMs());
     Record("segmentation", newest.masks->segment_ms);
@@ -102,6 +104,7 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
       carried_from_ = found.frame_index;
       carried_from_timestamp_ = found.timestamp;
       carried_movers_ = AnyPotentialMover(found.instances, classes_.get());
+      delivered_lag_ = lag;
     } else if (carried_from_ && previous_) {
       out.instances = carrier_.Carry(previous_->segmented, track_history_.back(), size);
     }
@@ -114,14 +117,15 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
     return out;
   }
   const std::size_t age = next_index_ - *carried_from_;
-  // Not re-detected for too long: the objects expire (the ID tracker may still remember them).
-  const int carry_frames = config_.segmentation.carry_frames;
-  if (age > static_cast<std::size_t>(carry_frames)) {
-    out.instances.clear();
-    // Movers were in view and nothing says where they are now: keyframes wait for the
-    // network's next masks, within the bound BoundMoverVetoes sets.
-    report_.masks_expired = carried_movers_;
-  }
+  const auto carry_frames = static_cast<std::size_t>(config_.segmentation.carry_frames);
+  // The network delivered nothing newer for carry_frames frames: it has stalled, and the
+  // objects expire (the ID tracker may still remember them). A network that is only slow keeps
+  // its masks carried: they say more about where its people are than no masks at all.
+  if (age > delivered_lag_ + carry_frames) out.instances.clear();
+  // Movers were in view and their masks are older than carry_frames: they may have left the
+  // carried masks, so keyframes wait for the network's next ones, within the bound
+  // BoundMoverVetoes sets.
+  if (age > carry_frames) report_.masks_expired = carried_movers_;
   const double carry_ms = watch.ElapsedMs();
   masks_->RecordCarried(age, (timestamp - carried_from_timestamp_) * 1000.0, carry_ms);
   Record("segmentation_wait", carry_ms);

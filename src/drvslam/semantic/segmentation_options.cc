@@ -79,7 +79,7 @@ const OptionTable<SegmentationOptions>& SegmentationOptionTable() {
         .Choice("propagation", &S::propagation, PropagationChoices(),
                 "How late masks are carried to the current frame (--realtime).")
         .Int("carryFrames", &S::carry_frames, Bounds::In(1, 1000),
-             "objects propagation: masks older than this many frames expire.")
+             "objects propagation: masks expire after this many frames without newer ones.")
         .Int("carryMinSupport", &S::carry_min_support, Bounds::AtLeast(1),
              "objects propagation: flow tracks an instance needs to be carried.")
         .List("movingClasses", &S::moving_classes,

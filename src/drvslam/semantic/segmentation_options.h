@@ -66,9 +66,10 @@ struct SegmentationOptions {
   std::string mask_class = "person";
 
   MaskPropagation propagation = MaskPropagation::kObjects;  // Segmentation.propagation
-  // Segmentation.carryFrames (objects propagation): masks carried longer than this many frames
-  // since their detection expire: an object the network has not re-detected for that long
-  // disappears, and masks that finish later than this are not carried at all.
+  // Segmentation.carryFrames (objects propagation): when the network delivers no newer masks
+  // for this many frames, the carried ones expire (an object it has not re-detected for that
+  // long disappears); masks that finish up to twice this late are still carried. Keyframes
+  // wait while people's masks are older than this (docs/real-time.md).
   int carry_frames = 8;
   // Segmentation.carryMinSupport (objects propagation): an instance with fewer flow tracks
   // starting inside it cannot be carried and disappears.
