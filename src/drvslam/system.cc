@@ -317,8 +317,9 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
     // against one consistent state of the map.
     std::lock_guard<std::mutex> lock(map.UpdateMutex());
     // A frame that says nothing of where its movers are (without a detector: motion evidence
-    // not believed; at camera rate: the people's masks aged out) is tracked but not mapped, or
-    // its movers would stay in the map.
+    // not believed; at camera rate: the people's masks older than Segmentation.carryFrames, or
+    // a crowd seen through carried masks) is tracked but not mapped, or its movers would stay
+    // in the map.
     tracker.VetoKeyFrame(dynamic && dynamic->MoversUnchecked());
     result = tracker.Track(std::move(frame), depth);
     // Map points matched on still potentially-moving objects are filed, to be culled when the

@@ -74,6 +74,8 @@ class HoldingSegmenter : public ScriptedSegmenter {
   Segmentation Segment(const cv::Mat& bgr, double timestamp, std::size_t index) override {
     {
       std::unique_lock<std::mutex> lock(mutex_);
+      entered_.insert(index);
+      released_.notify_all();
       released_.wait(lock, [&] { return held_.count(index) == 0; });
     }
     return ScriptedSegmenter::Segment(bgr, timestamp, index);
@@ -83,11 +85,41 @@ class HoldingSegmenter : public ScriptedSegmenter {
     held_.erase(index);
     released_.notify_all();
   }
+  void ReleaseAll() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_.clear();
+    released_.notify_all();
+  }
+  // Whether the network has started on frame `index` (a generous bound against hangs): a frame
+  // it has taken can no longer be replaced in its one-frame queue by the next one.
+  bool AwaitStarted(std::size_t index) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return released_.wait_for(lock, std::chrono::seconds(10),
+                              [&] { return entered_.count(index) != 0; });
+  }
 
  private:
   std::mutex mutex_;
   std::condition_variable released_;
   std::set<std::size_t> held_;
+  std::set<std::size_t> entered_;
+};
+
+// Lets every frame of a held or gated network go when a test ends, however it ends (an
+// assertion that returns early included), before the stage that waits for its passes is
+// destroyed: declare it after the stage.
+template <typename Network>
+class OpenAtExit {
+ public:
+  explicit OpenAtExit(Network& network) : network_(network) {}
+  ~OpenAtExit() { Open(network_); }
+  OpenAtExit(const OpenAtExit&) = delete;
+  OpenAtExit& operator=(const OpenAtExit&) = delete;
+
+ private:
+  static void Open(GatedSegmenter& network) { network.Open(); }
+  static void Open(HoldingSegmenter& network) { network.ReleaseAll(); }
+  Network& network_;
 };
 
 }  // namespace drvslam::test

@@ -104,8 +104,9 @@ struct DynamicFrameReport {
   int feature_target = 0;
   bool keyframe_likely = false;  // tracking expected this frame to become a keyframe
   bool own_masks = false;        // the frame's own masks (not carried ones) were used
-  // --realtime: the carried masks of potentially-moving objects aged out before the network's
-  // next ones came, so nothing says where those movers are now (MoversUnchecked).
+  // --realtime: the masks of potentially-moving objects are older than
+  // Segmentation.carryFrames (still carried, or expired), so those movers may have left them
+  // (MoversUnchecked; within the bound BoundMoverVetoes sets).
   bool masks_expired = false;
   // --realtime: potentially-moving objects cover more than Dynamic.largeShare of the view and
   // their masks are carried, not the frame's own (MoversUnchecked).
@@ -160,9 +161,11 @@ struct DynamicStats {
   std::size_t keyframes_own_masks = 0;
   std::size_t keyframe_waits = 0;
   std::size_t keyframe_waits_fresh = 0;
-  std::size_t frames_masks_expired = 0;  // frames whose movers' masks had aged out
-  std::size_t frames_crowd_carried = 0;  // frames of a crowd seen through carried masks
-  std::string segmenter;                 // backend name, or "none"
+  // Vetoed frames by reason (a frame may have both): movers' masks older than carryFrames, a
+  // crowd seen through carried masks.
+  std::size_t frames_masks_expired = 0;
+  std::size_t frames_crowd_carried = 0;
+  std::string segmenter;  // backend name, or "none"
   bool realtime = false;
   std::optional<AsyncSegmenterStats> segmentation;
   std::optional<SegmentationLatencyStats> latency;
@@ -189,7 +192,7 @@ class DynamicFrontEnd {
   // Dynamic.skipMovingExtraction is off.
   cv::Mat MovingSkipMask();
   // After tracking the frame: whether it became a keyframe (for the keyframe statistics; a
-  // keyframe also restarts the count of a crowd seen through carried masks).
+  // keyframe also restarts the run of vetoed frames, both reasons: BoundMoverVetoes).
   void NoteKeyFrame(bool became_keyframe);
   // `frame` was extracted from `bgr` (the image BeginFrame got) with `depth` (CV_32FC1 metres).
   // Returns the frame with the removed features taken out (same id and timestamp). The paper's
@@ -204,11 +207,11 @@ class DynamicFrontEnd {
   const DynamicFrameReport& LastReport() const { return report_; }
   // Nothing in the last filtered frame says where its movers are: without a segmenter, its
   // unlabelled-motion evidence was weighed and not believed (blurred, misfit, camera failure);
-  // with one (--realtime), the masks of movers in view aged out before the network's next ones
-  // came, or movers cover more than Dynamic.largeShare of the view and their masks are carried
-  // ones; for at most Segmentation.carryFrames such frames in a row, either reason, since the
-  // last keyframe. In a crowd, keyframes from such frames mapped the people, and tracking then
-  // followed them
+  // with one (--realtime), the masks of movers in view are older than Segmentation.carryFrames
+  // (carried, or expired before the network's next ones came), or movers cover more than
+  // Dynamic.largeShare of the view and their masks are carried ones; for at most carryFrames
+  // such frames in a row, either reason, since the last keyframe. In a crowd, keyframes from such
+  // frames mapped the people, and tracking then followed them
   // (docs/dynamic-handling.md#frames-without-believed-evidence, docs/real-time.md).
   bool MoversUnchecked() const;
   DynamicStats Stats() const;

@@ -79,6 +79,8 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   out.frame_index = next_index_;
   out.image_size = size;
   const MaskSource::Newest newest = masks_->NewestFor(next_index_, size);
+  // The frame's own masks may have finished since AwaitKeyFrameMasks asked.
+  report_.own_masks = newest.own;
   if (newest.masks) CheckMasks(newest.masks->segmentation.instances, size, next_index_);
   if (newest.own) {
     out.instances = newest.masks->segmentation.instances;
@@ -118,10 +120,17 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   }
   const std::size_t age = next_index_ - *carried_from_;
   const auto carry_frames = static_cast<std::size_t>(config_.segmentation.carry_frames);
-  // The network delivered nothing newer for carry_frames frames: it has stalled, and the
-  // objects expire (the ID tracker may still remember them). A network that is only slow keeps
-  // its masks carried: they say more about where its people are than no masks at all.
-  if (age > delivered_lag_ + carry_frames) out.instances.clear();
+  // The network delivered nothing newer that could be carried for carry_frames frames: it has
+  // stalled, and the objects expire (the ID tracker may still remember them). A network that
+  // is only slow keeps its masks carried: they say more about where its people are than no
+  // masks at all.
+  if (age > delivered_lag_ + carry_frames) {
+    out.instances.clear();
+    // Stalled for carry_frames frames more: the network has stopped, and the people it last
+    // saw no longer hold keyframes back (one keyframe per carry_frames + 1 frames otherwise,
+    // for the rest of the run).
+    if (age > delivered_lag_ + 2 * carry_frames) carried_movers_ = false;
+  }
   // Movers were in view and their masks are older than carry_frames: they may have left the
   // carried masks, so keyframes wait for the network's next ones, within the bound
   // BoundMoverVetoes sets.
@@ -158,9 +167,10 @@ void DynamicFrontEnd::BoundMoverVetoes() {
   // Keyframes wait for the network's masks, but a network that never keeps up must not stop
   // mapping: at most carry_frames vetoed frames in a row, for either reason, and the count
   // starts again only after a keyframe (NoteKeyFrame) or a frame with neither reason. One
-  // count for both: with masks always 9-16 frames old (carryFrames 8) a crowd would otherwise
-  // alternate "carried" and "aged out", each reason restarting the other's count, and no
-  // keyframe would come for as long as the crowd lasted.
+  // count for both: with a count per reason (and masks more than carry_frames late dropped, as
+  // they were then), masks 9-16 frames old (carryFrames 8) made a crowd alternate "carried" and
+  // "aged out", each reason restarting the other's count, and no keyframe came for as long as
+  // the crowd lasted.
   if (!report_.masks_expired && !report_.crowd_carried) {
     frames_vetoed_ = 0;
     return;

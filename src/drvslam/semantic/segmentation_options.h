@@ -67,9 +67,9 @@ struct SegmentationOptions {
 
   MaskPropagation propagation = MaskPropagation::kObjects;  // Segmentation.propagation
   // Segmentation.carryFrames (objects propagation): when the network delivers no newer masks
-  // for this many frames, the carried ones expire (an object it has not re-detected for that
-  // long disappears); masks that finish up to twice this late are still carried. Keyframes
-  // wait while people's masks are older than this (docs/real-time.md).
+  // that can be carried for this many frames, the carried ones expire (an object it has not
+  // re-detected for that long disappears); masks that finish up to twice this late are still
+  // carried. Keyframes wait while people's masks are older than this (docs/real-time.md).
   int carry_frames = 8;
   // Segmentation.carryMinSupport (objects propagation): an instance with fewer flow tracks
   // starting inside it cannot be carried and disappears.
