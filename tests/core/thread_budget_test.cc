@@ -94,7 +94,9 @@ TEST(ThreadBudgetTest, AnotherThreadCanRestoreAChangedPriority) {
   EXPECT_EQ(nice_lowered, std::min(NiceOffset(BackgroundStage::kLocalMapping), 19 - nice_before));
   // Raising a priority needs CAP_SYS_NICE (root has it): without it nothing changes.
   EXPECT_EQ(nice_restored, raised ? 0 : nice_lowered);
-  if (geteuid() == 0) EXPECT_TRUE(raised);
+  if (geteuid() == 0) {
+    EXPECT_TRUE(raised);
+  }
 }
 #endif
 

@@ -221,7 +221,9 @@ TEST_F(DynamicFrontEndTest, RealtimeMasksOfASlowNetworkAreCarriedUntilItStalls) 
   for (int f = 0; f < frames; ++f) {
     BeginGatedFrame(stage, sequence, f);
     // Taken by the network before frame 2 comes, which would otherwise replace it.
-    if (f == 1) ASSERT_TRUE(segmenter->AwaitStarted(1));
+    if (f == 1) {
+      ASSERT_TRUE(segmenter->AwaitStarted(1));
+    }
     stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
     has_masks.push_back(!stage.LastReport().instances.empty());
     vetoed.push_back(stage.MoversUnchecked());
@@ -264,8 +266,12 @@ TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames)
       const DynamicFrameReport& report = stage.LastReport();
       const bool carried = f >= 1 && f <= 4;
       // The carried person covers more than 0.01 of the image and less than 0.3.
-      if (carried) ASSERT_GT(report.share, 0.01) << "frame " << f;
-      if (carried) ASSERT_LT(report.share, 0.3) << "frame " << f;
+      if (carried) {
+        ASSERT_GT(report.share, 0.01) << "frame " << f;
+      }
+      if (carried) {
+        ASSERT_LT(report.share, 0.3) << "frame " << f;
+      }
       const bool carried_crowd = crowd && carried;
       EXPECT_EQ(report.crowd_carried, carried_crowd) << "share " << large_share << ", frame " << f;
       EXPECT_EQ(stage.MoversUnchecked(), carried_crowd || (!crowd && f == 5))
@@ -297,8 +303,12 @@ TEST_F(DynamicFrontEndTest, TheCrowdAndAgedOutMasksShareOneBoundOnVetoedFrames) 
       BeginGatedFrame(stage, sequence, f);
       stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
       const DynamicFrameReport& report = stage.LastReport();
-      if (f >= 1 && f <= 2) ASSERT_FALSE(report.instances.empty()) << "frame " << f;
-      if (f >= 3) ASSERT_TRUE(report.instances.empty()) << "frame " << f;
+      if (f >= 1 && f <= 2) {
+        ASSERT_FALSE(report.instances.empty()) << "frame " << f;
+      }
+      if (f >= 3) {
+        ASSERT_TRUE(report.instances.empty()) << "frame " << f;
+      }
       vetoed.push_back(stage.MoversUnchecked());
       stage.NoteKeyFrame(keyframe_when_free && f > 0 && !vetoed.back());
     }
@@ -332,7 +342,9 @@ TEST_F(DynamicFrontEndTest, ALongCarriedCrowdGetsOneKeyFramePerCarryFramesAndOne
       BeginGatedFrame(stage, sequence, f);
       stage.Filter(Extract(sequence, f), sequence.bgr[f], sequence.images[f].depth);
       vetoed.push_back(stage.LastReport().crowd_carried);
-      if (f > 0) ASSERT_FALSE(stage.LastReport().own_masks) << "frame " << f;
+      if (f > 0) {
+        ASSERT_FALSE(stage.LastReport().own_masks) << "frame " << f;
+      }
       stage.NoteKeyFrame(keyframe_when_free && f > 0 && !vetoed.back());
       // Frame f's masks arrive before frame f+1 is tracked.
       segmenter->Release(static_cast<std::size_t>(f));

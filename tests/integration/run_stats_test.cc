@@ -113,8 +113,9 @@ TEST(RunStatsTest, ThreadsListTrackingAndLocalMappingWithTheirCpuTime) {
   EXPECT_GT(tracking["cpu_s"].get<double>(), 0.0);
   EXPECT_GT(mapping["cpu_s"].get<double>(), 0.0);
   for (const nlohmann::json& thread : stats["threads"]) {
-    if (!thread["runqueue_wait_s"].is_null())
+    if (!thread["runqueue_wait_s"].is_null()) {
       EXPECT_GE(thread["runqueue_wait_s"].get<double>(), 0.0);
+    }
   }
   EXPECT_EQ(summary.threads.size(), stats["threads"].size());
 #endif

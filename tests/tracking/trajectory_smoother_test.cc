@@ -212,7 +212,9 @@ TEST(TrajectorySmoother, PassesABrokenPoseThroughAndSmoothsAroundIt) {
   ASSERT_EQ(smoothed.size(), noisy.size());
   EXPECT_TRUE(std::isnan(smoothed[100].T_wc.Translation().x()));
   for (std::size_t i = 0; i < smoothed.size(); ++i) {
-    if (i != 100) EXPECT_TRUE(smoothed[i].T_wc.Translation().allFinite()) << i;
+    if (i != 100) {
+      EXPECT_TRUE(smoothed[i].T_wc.Translation().allFinite()) << i;
+    }
   }
   Trajectory good_smoothed, good_path, good_noisy;
   for (std::size_t i = 0; i < path.size(); ++i) {
