@@ -4,8 +4,9 @@
 // the previous frame's depth), and the whole stage (motion consistency + object IDs, motion
 // states, removal and feature filtering) as System runs it, on consecutive frames only, with the
 // stage split reported as counters, and the stage without a segmenter (geometry alone) with and
-// without the regions' metric reach. Frames and ground-truth masks come from a short synthetic
-// walking sequence generated at start-up.
+// without the regions' metric reach, and a keyframe's late masks culling its points on people.
+// Frames and ground-truth masks come from a short synthetic walking sequence generated at
+// start-up.
 // Single-threaded OpenCV (cv::setNumThreads(1)): per-core cost.
 #include <benchmark/benchmark.h>
 
@@ -18,9 +19,11 @@
 
 #include "drvslam/core/settings.h"
 #include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/dynamic/late_keyframe_masks.h"
 #include "drvslam/dynamic/motion_consistency.h"
 #include "drvslam/dynamic/removal_policy.h"
 #include "drvslam/io/tum_dataset.h"
+#include "drvslam/map/map_point.h"
 #include "drvslam/semantic/class_table.h"
 #include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/truth/ground_truth_segmenter.h"
@@ -217,6 +220,49 @@ void BM_DynamicStageWithoutSegmenter(benchmark::State& state) {
   RunStage(state, Sequence(), config);
 }
 BENCHMARK(BM_DynamicStageWithoutSegmenter)->Arg(0)->Arg(30)->Unit(benchmark::kMillisecond);
+
+// A keyframe's late masks (--realtime): 1000 points created by a 640x480 keyframe, two people
+// covering 40 % of the image; the points on them are culled (about 400). Per keyframe, on the
+// tracking thread.
+void BM_LateKeyFrameMasks(benchmark::State& state) {
+  const auto geometry =
+      std::make_shared<SensorGeometry>(CameraOptions{}, ScalePyramid(8, 1.2), 3.0);
+  cv::RNG rng(7);
+  std::vector<cv::KeyPoint> keypoints;
+  for (int i = 0; i < 1000; ++i) {
+    keypoints.emplace_back(rng.uniform(0.f, 640.f), rng.uniform(0.f, 480.f), 31.f);
+  }
+  const auto features = std::make_shared<const FrameFeatures>(
+      geometry, keypoints, cv::Mat::zeros(1000, 32, CV_8UC1), cv::Mat());
+  std::vector<Instance> people(2);
+  for (int k = 0; k < 2; ++k) {
+    people[k].class_id = 0;
+    people[k].box = cv::Rect(64 + 320 * k, 0, 128, 480);
+    people[k].mask = cv::Mat::zeros(480, 640, CV_8UC1);
+    people[k].mask(people[k].box).setTo(255);
+  }
+  const std::vector<bool> potentially_moving{true, true};
+  std::size_t culled = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Map map;
+    auto keyframe = std::make_shared<KeyFrame>(0, 1, 0.0, features, SE3(),
+                                               std::vector<std::shared_ptr<MapPoint>>());
+    for (std::size_t i = 0; i < keypoints.size(); ++i) {
+      auto point =
+          std::make_shared<MapPoint>(map.NextMapPointId(), Eigen::Vector3d(0, 0, 2), keyframe);
+      point->AddObservation(keyframe, static_cast<int>(i));
+      keyframe->AddMapPoint(point, i);
+      map.AddMapPoint(point);
+    }
+    LateKeyFrameMasks late;
+    late.Expect(1, keyframe);
+    state.ResumeTiming();
+    culled += late.Apply(1, people, potentially_moving, map);
+  }
+  state.counters["culled"] = static_cast<double>(culled) / state.iterations();
+}
+BENCHMARK(BM_LateKeyFrameMasks)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -340,7 +340,7 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   // A loss asked for a new map: it waits for local mapping's keyframe in flight, which may need
   // the update lock, so it runs after the lock is released.
   tracker.ApplyPendingReset();
-  if (dynamic) dynamic->NoteKeyFrame(result.new_keyframe != nullptr);
+  if (dynamic) dynamic->NoteKeyFrame(result.new_keyframe);
   // Sequential: the keyframe is mapped here, before the next frame.
   if (result.new_keyframe) local_mapper.InsertKeyFrame(result.new_keyframe);
   // Filed for place recognition once mapping has it (its bag of words came with it).

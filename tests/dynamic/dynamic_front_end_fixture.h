@@ -14,6 +14,7 @@
 
 #include "drvslam/dynamic/dynamic_front_end.h"
 #include "drvslam/feature/orb_extractor.h"
+#include "drvslam/map/keyframe.h"
 #include "plane_scene.h"
 #include "scripted_segmenters.h"
 
@@ -112,6 +113,16 @@ class DynamicFrontEndTest : public ::testing::Test {
     for (int wait = 0; wait < 2000 && stage.Stats().segmentation->segmented < 1; ++wait) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
+  }
+
+  // The keyframe tracking made of frame f when `made`, else null (for NoteKeyFrame). It has no
+  // features: late masks cull nothing of it.
+  std::shared_ptr<KeyFrame> KeyFrameIf(bool made, int f) {
+    if (!made) return nullptr;
+    auto features = std::make_shared<const FrameFeatures>(geometry_, std::vector<cv::KeyPoint>(),
+                                                          cv::Mat(), cv::Mat());
+    return std::make_shared<KeyFrame>(map_.NextKeyFrameId(), f, 0.033 * f, features, SE3(),
+                                      std::vector<std::shared_ptr<MapPoint>>());
   }
 
   static int CountOn(const Frame& frame, const cv::Mat& labels, int label) {

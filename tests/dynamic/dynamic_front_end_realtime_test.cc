@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "drvslam/dynamic/dynamic_front_end.h"
+#include "drvslam/map/map_point.h"
 #include "dynamic_front_end_fixture.h"
 
 namespace drvslam {
@@ -46,6 +47,7 @@ TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNev
       std::make_shared<HoldingSegmenter>(sequence.masks, 100, std::set<std::size_t>{0, 1, 3});
   config.segmenter = network;
   DynamicFrontEnd stage(config, 1000, map_, nullptr);
+  const OpenAtExit<HoldingSegmenter> release_at_exit(*network);
   const bool likely[] = {false, true, true, false};
   const bool own[] = {false, false, true, false};
   for (int f = 0; f < 4; ++f) {
@@ -58,9 +60,8 @@ TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNev
     }
     RunFrame(stage, sequence, f, likely[f]);
     EXPECT_EQ(stage.LastReport().own_masks, own[f]) << "frame " << f;
-    stage.NoteKeyFrame(likely[f]);
+    stage.NoteKeyFrame(KeyFrameIf(likely[f], f));
   }
-  network->Release(3);
   const DynamicStats stats = stage.Stats();
   EXPECT_EQ(stats.keyframe_waits, 1u);
   EXPECT_EQ(stats.keyframe_waits_fresh, 1u);
@@ -141,6 +142,7 @@ TEST_F(DynamicFrontEndTest, RealtimeCarriesLaggingMasksOntoAWalkingPersonByItsTr
   ASSERT_EQ(config.segmentation.propagation, MaskPropagation::kObjects);
   StageTimings timings;
   DynamicFrontEnd stage(config, 1000, map_, &timings);
+  const OpenAtExit<GatedSegmenter> open_at_exit(*segmenter);
   int first_id = -1;
   for (int f = 0; f < frames; ++f) {
     BeginGatedFrame(stage, sequence, f);
@@ -163,7 +165,6 @@ TEST_F(DynamicFrontEndTest, RealtimeCarriesLaggingMasksOntoAWalkingPersonByItsTr
   EXPECT_EQ(stats.latency->propagated, static_cast<std::size_t>(frames - 1));
   EXPECT_EQ(stats.latency->lag_frames.max, frames - 1.0);
   EXPECT_EQ(timings.Summaries().at("segmentation_wait").count, static_cast<std::size_t>(frames));
-  segmenter->Open();
 }
 
 TEST_F(DynamicFrontEndTest, RealtimeMasksOfMoversThatAgeOutVetoKeyFramesForABoundedTime) {
@@ -184,6 +185,7 @@ TEST_F(DynamicFrontEndTest, RealtimeMasksOfMoversThatAgeOutVetoKeyFramesForABoun
     config.realtime = true;
     config.segmentation.carry_frames = 2;
     DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    const OpenAtExit<GatedSegmenter> open_at_exit(*segmenter);
     const bool person = class_id == 0;
     const bool unchecked[] = {false, false, false, person, person, false, false};
     for (int f = 0; f < frames; ++f) {
@@ -194,7 +196,6 @@ TEST_F(DynamicFrontEndTest, RealtimeMasksOfMoversThatAgeOutVetoKeyFramesForABoun
       EXPECT_EQ(stage.MoversUnchecked(), unchecked[f]) << "class " << class_id << ", frame " << f;
     }
     EXPECT_EQ(stage.Stats().frames_masks_expired, person ? 2u : 0u) << "class " << class_id;
-    segmenter->Open();
   }
 }
 
@@ -259,6 +260,7 @@ TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames)
     config.segmentation.carry_frames = 4;
     config.options.large_share = large_share;
     DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    const OpenAtExit<GatedSegmenter> open_at_exit(*segmenter);
     const bool crowd = large_share < 0.1;
     for (int f = 0; f < frames; ++f) {
       BeginGatedFrame(stage, sequence, f);
@@ -278,7 +280,6 @@ TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames)
           << "share " << large_share << ", frame " << f;
     }
     EXPECT_EQ(stage.Stats().frames_crowd_carried, crowd ? 4u : 0u) << "share " << large_share;
-    segmenter->Open();
   }
 }
 
@@ -310,7 +311,7 @@ TEST_F(DynamicFrontEndTest, TheCrowdAndAgedOutMasksShareOneBoundOnVetoedFrames) 
         ASSERT_TRUE(report.instances.empty()) << "frame " << f;
       }
       vetoed.push_back(stage.MoversUnchecked());
-      stage.NoteKeyFrame(keyframe_when_free && f > 0 && !vetoed.back());
+      stage.NoteKeyFrame(KeyFrameIf(keyframe_when_free && f > 0 && !vetoed.back(), f));
     }
     const std::vector<bool> expected =
         keyframe_when_free
@@ -337,6 +338,7 @@ TEST_F(DynamicFrontEndTest, ALongCarriedCrowdGetsOneKeyFramePerCarryFramesAndOne
     for (std::size_t f = 1; f < static_cast<std::size_t>(frames); ++f) held.insert(f);
     auto segmenter = std::make_shared<HoldingSegmenter>(sequence.masks, 0, held);
     DynamicFrontEnd stage(CrowdConfig(segmenter, 2), 1000, map_, nullptr);
+    const OpenAtExit<HoldingSegmenter> release_at_exit(*segmenter);
     std::vector<bool> vetoed;
     for (int f = 0; f < frames; ++f) {
       BeginGatedFrame(stage, sequence, f);
@@ -345,7 +347,7 @@ TEST_F(DynamicFrontEndTest, ALongCarriedCrowdGetsOneKeyFramePerCarryFramesAndOne
       if (f > 0) {
         ASSERT_FALSE(stage.LastReport().own_masks) << "frame " << f;
       }
-      stage.NoteKeyFrame(keyframe_when_free && f > 0 && !vetoed.back());
+      stage.NoteKeyFrame(KeyFrameIf(keyframe_when_free && f > 0 && !vetoed.back(), f));
       // Frame f's masks arrive before frame f+1 is tracked.
       segmenter->Release(static_cast<std::size_t>(f));
       for (int wait = 0;
@@ -361,6 +363,60 @@ TEST_F(DynamicFrontEndTest, ALongCarriedCrowdGetsOneKeyFramePerCarryFramesAndOne
                            : std::vector<bool>{false, true, true, false, false, false, false};
     EXPECT_EQ(vetoed, expected) << "keyframes when free: " << keyframe_when_free;
   }
+}
+
+TEST_F(DynamicFrontEndTest, AKeyFrameMadeWithoutItsMasksLosesItsPointsOnPeopleWhenTheyCome) {
+  // Frame 0 is on the network (held) when frame 1 comes: frame 1 has no masks at all, keeps
+  // the features of the person (standing still: no motion removes them either) and becomes a
+  // keyframe with a map point on every feature. Its image
+  // is kept for the network, so frame 2 is dropped instead of replacing it. Once frames 0 and 1
+  // are segmented, frame 2's Filter culls the keyframe's points on the person (frame 1's own
+  // mask) and only those.
+  const Sequence sequence = Render(3, false, nullptr, [](int) { return 0.0; });
+  auto network = std::make_shared<HoldingSegmenter>(sequence.masks, 0, std::set<std::size_t>{0});
+  DynamicFrontEndConfig config;
+  config.segmenter = network;
+  config.realtime = true;
+  DynamicFrontEnd stage(config, 1000, map_, nullptr);
+  const OpenAtExit<HoldingSegmenter> release_at_exit(*network);
+  RunFrame(stage, sequence, 0);
+  ASSERT_TRUE(network->AwaitStarted(0));
+  stage.BeginFrame(0.033, sequence.bgr[1]);
+  const Frame tracked =
+      stage.Filter(Extract(sequence, 1), sequence.bgr[1], sequence.images[1].depth);
+  ASSERT_FALSE(stage.LastReport().own_masks);
+  auto keyframe = std::make_shared<KeyFrame>(map_.NextKeyFrameId(), 1, 0.033, tracked.FeaturesPtr(),
+                                             SE3(), std::vector<std::shared_ptr<MapPoint>>());
+  const cv::Mat& person = sequence.masks[1].instances[0].mask;
+  std::vector<std::shared_ptr<MapPoint>> on_person;
+  std::vector<std::shared_ptr<MapPoint>> elsewhere;
+  for (std::size_t i = 0; i < tracked.Size(); ++i) {
+    auto point =
+        std::make_shared<MapPoint>(map_.NextMapPointId(), Eigen::Vector3d(0, 0, 3), keyframe);
+    point->AddObservation(keyframe, static_cast<int>(i));
+    keyframe->AddMapPoint(point, i);
+    map_.AddMapPoint(point);
+    const cv::Point2f p = tracked.Features().Keypoints()[i].pt;
+    const bool on = person.at<unsigned char>(static_cast<int>(p.y), static_cast<int>(p.x)) != 0;
+    (on ? on_person : elsewhere).push_back(point);
+  }
+  ASSERT_GE(on_person.size(), 5u);
+  ASSERT_GE(elsewhere.size(), 50u);
+  stage.NoteKeyFrame(keyframe);
+
+  stage.BeginFrame(0.066, sequence.bgr[2]);
+  network->Release(0);
+  ASSERT_TRUE(AwaitIdleNetwork(stage));
+  stage.Filter(Extract(sequence, 2), sequence.bgr[2], sequence.images[2].depth);
+  for (const auto& point : on_person) EXPECT_TRUE(point->IsBad());
+  for (const auto& point : elsewhere) EXPECT_FALSE(point->IsBad());
+  EXPECT_EQ(map_.MapPointCount(), elsewhere.size());
+  const DynamicStats stats = stage.Stats();
+  EXPECT_EQ(stats.keyframes_late_masks, 1u);
+  EXPECT_EQ(stats.keyframes_late_missed, 0u);
+  EXPECT_EQ(stats.late_points_culled, on_person.size());
+  EXPECT_EQ(stats.segmentation->dropped, 1u);  // frame 2, not the keyframe
+  EXPECT_EQ(stats.segmentation->segmented, 2u);
 }
 
 TEST_F(DynamicFrontEndTest, FlowOnTheHelperThreadGivesTheSameFrames) {

@@ -177,6 +177,46 @@ TEST(AsyncSegmenterTest, FreeNetworkAlwaysTakesTheNewestFrameInRealtimeMode) {
   EXPECT_EQ(segmenter.Stats().dropped, 3u);
 }
 
+TEST(AsyncSegmenterTest, AKeptFrameIsSegmentedAndNewerOnesAreDroppedWhileItWaits) {
+  // Frame 1 runs, frame 2 waits and is kept (a keyframe's): frames 3-5 are dropped instead of
+  // replacing it, so the network goes from 1 to 2. Once 2 is taken, frame 6 queues as usual.
+  HeldRealtimeSegmenter held;
+  auto& [fake, segmenter] = held;
+  fake->AwaitStarted(1);
+  segmenter.Submit(2, 0.0, kImage);
+  segmenter.Keep(2);
+  EXPECT_TRUE(segmenter.Pending(2));
+  for (std::size_t i = 3; i <= 5; ++i) segmenter.Submit(i, 0.0, kImage);
+  EXPECT_FALSE(segmenter.Pending(3));
+  EXPECT_FALSE(segmenter.Pending(5));
+  fake->Open();
+  EXPECT_EQ(segmenter.Wait(2)->segmentation.frame_index, 2u);
+  EXPECT_FALSE(segmenter.Pending(2));
+  segmenter.Submit(6, 0.0, kImage);
+  EXPECT_EQ(segmenter.Wait(6)->segmentation.frame_index, 6u);
+  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{1, 2, 6}));
+  EXPECT_EQ(segmenter.Stats().dropped, 3u);
+  EXPECT_FALSE(segmenter.Pending(7));  // never submitted
+}
+
+TEST(AsyncSegmenterTest, KeepingARunningOrFinishedFrameChangesNothing) {
+  // Frame 1 is already on the network when it is kept: frame 2 waits, frame 3 replaces it.
+  HeldRealtimeSegmenter held;
+  auto& [fake, segmenter] = held;
+  fake->AwaitStarted(1);
+  segmenter.Keep(1);
+  EXPECT_TRUE(segmenter.Pending(1));
+  segmenter.Submit(2, 0.0, kImage);
+  segmenter.Submit(3, 0.0, kImage);
+  fake->Open();
+  EXPECT_EQ(segmenter.Wait(3)->segmentation.frame_index, 3u);
+  segmenter.Keep(3);
+  segmenter.Submit(4, 0.0, kImage);
+  EXPECT_EQ(segmenter.Wait(4)->segmentation.frame_index, 4u);
+  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{1, 3, 4}));
+  EXPECT_EQ(segmenter.Stats().dropped, 1u);
+}
+
 TEST(AsyncSegmenterTest, WaitForGivesUpAtItsDeadline) {
   HeldRealtimeSegmenter held;
   auto& [fake, segmenter] = held;

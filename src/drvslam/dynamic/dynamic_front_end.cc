@@ -235,15 +235,20 @@ cv::Mat DynamicFrontEnd::MovingSkipMask() {
   return skip;
 }
 
-void DynamicFrontEnd::NoteKeyFrame(bool became_keyframe) {
-  if (!became_keyframe) return;
+void DynamicFrontEnd::NoteKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
+  if (!keyframe) return;
   // A keyframe made once the veto ran out starts its count again: while movers go unchecked,
   // at most one keyframe per carry_frames + 1 frames. (A map's first keyframe, which no veto
   // holds back, restarts it too: at most carry_frames frames more.)
   frames_vetoed_ = 0;
   ++stats_.keyframes;
   if (report_.keyframe_likely) ++stats_.keyframes_expected;
-  if (report_.own_masks) ++stats_.keyframes_own_masks;
+  if (report_.own_masks) {
+    ++stats_.keyframes_own_masks;
+  } else if (config_.realtime && async_ && config_.segmentation.late_keyframe_masks) {
+    async_->Keep(report_.frame_index);
+    late_keyframes_.Expect(report_.frame_index, keyframe);
+  }
 }
 
 // The paper's four steps, in order; each leaves what the next one needs.
@@ -297,6 +302,7 @@ DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Fra
   std::vector<FlowTrack> tracks = std::move(flow.tracks);
   double consistency_ms = consistency_watch.ElapsedMs();
   if (carry_objects_) segmentation = CarriedMasksFor(frame.Timestamp(), regions.size, tracks);
+  if (async_) ApplyLateKeyFrameMasks(regions.size);
   regions.instances = std::move(segmentation.instances);
   regions.potentially_moving.assign(regions.instances.size(), false);
   for (std::size_t k = 0; k < regions.instances.size(); ++k) {

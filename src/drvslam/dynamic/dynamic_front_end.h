@@ -48,6 +48,7 @@
 #include "drvslam/dynamic/depth_mask_completion.h"
 #include "drvslam/dynamic/dynamic_options.h"
 #include "drvslam/dynamic/frame_sharpness.h"
+#include "drvslam/dynamic/late_keyframe_masks.h"
 #include "drvslam/dynamic/motion_consistency.h"
 #include "drvslam/dynamic/motion_persistence.h"
 #include "drvslam/dynamic/motion_state.h"
@@ -161,6 +162,11 @@ struct DynamicStats {
   std::size_t keyframes_own_masks = 0;
   std::size_t keyframe_waits = 0;
   std::size_t keyframe_waits_fresh = 0;
+  // Keyframes made without their own masks (--realtime, Segmentation.lateKeyFrameMasks): those
+  // whose masks came later, those whose never did, and the points culled by the late masks.
+  std::size_t keyframes_late_masks = 0;
+  std::size_t keyframes_late_missed = 0;
+  std::size_t late_points_culled = 0;
   // Vetoed frames by reason (a frame may have both): movers' masks older than carryFrames, a
   // crowd seen through carried masks.
   std::size_t frames_masks_expired = 0;
@@ -191,9 +197,10 @@ class DynamicFrontEnd {
   // frame's), dilated by Dynamic.maskDilation. Empty when there is nothing to skip or
   // Dynamic.skipMovingExtraction is off.
   cv::Mat MovingSkipMask();
-  // After tracking the frame: whether it became a keyframe (for the keyframe statistics; a
-  // keyframe also restarts the run of vetoed frames, both reasons: BoundMoverVetoes).
-  void NoteKeyFrame(bool became_keyframe);
+  // After tracking the frame: the keyframe it became, or null (for the keyframe statistics; a
+  // keyframe also restarts the run of vetoed frames, both reasons: BoundMoverVetoes). With
+  // --realtime, a keyframe made without its own masks gets them late (LateKeyFrameMasks).
+  void NoteKeyFrame(const std::shared_ptr<KeyFrame>& keyframe);
   // `frame` was extracted from `bgr` (the image BeginFrame got) with `depth` (CV_32FC1 metres).
   // Returns the frame with the removed features taken out (same id and timestamp). The paper's
   // four steps, one call each: ConstrainMotionRegions, AssignObjectIds, ClassifyMotionStates,
@@ -304,6 +311,9 @@ class DynamicFrontEnd {
   // Realtime keyframe priority: a likely keyframe waits up to Segmentation.keyframeWaitMs for
   // its own masks when the network is on its image or next to be; notes whether it has them.
   void AwaitKeyFrameMasks();
+  // Keyframes made without their own masks whose masks have come since: their points on
+  // potentially-moving objects go (LateKeyFrameMasks). `size`: the image's, to check the masks.
+  void ApplyLateKeyFrameMasks(const cv::Size& size);
   // Realtime, objects propagation: this frame's own masks when finished, else masks carried
   // along `tracks` (previous frame -> this one): newer finished masks through the stored tracks
   // of the frames since theirs, otherwise the previous frame's (carried) masks.
@@ -351,6 +361,7 @@ class DynamicFrontEnd {
   ObjectIdTracker ids_;
   MotionStateClassifier classifier_;
   MovingPointCuller culler_;
+  LateKeyFrameMasks late_keyframes_;
   BlurDetector blur_;
   MotionPersistence persistence_;
   // The regions removed in the last frame (found or carried), for a blurred frame to carry, and

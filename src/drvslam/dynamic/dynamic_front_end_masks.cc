@@ -141,6 +141,25 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   return out;
 }
 
+void DynamicFrontEnd::ApplyLateKeyFrameMasks(const cv::Size& size) {
+  for (const std::size_t frame_index : late_keyframes_.Awaited()) {
+    if (const auto late = async_->TryGet(frame_index)) {
+      const std::vector<Instance>& instances = late->segmentation.instances;
+      CheckMasks(instances, size, frame_index);
+      std::vector<bool> potentially_moving(instances.size(), false);
+      for (std::size_t k = 0; k < instances.size(); ++k) {
+        potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
+      }
+      stats_.late_points_culled +=
+          late_keyframes_.Apply(frame_index, instances, potentially_moving, map_);
+      ++stats_.keyframes_late_masks;
+    } else if (!async_->Pending(frame_index)) {
+      late_keyframes_.GiveUp(frame_index);
+      ++stats_.keyframes_late_missed;
+    }
+  }
+}
+
 void DynamicFrontEnd::CompleteMasks(const cv::Mat& depth, MotionRegions* regions) {
   const DynamicOptions& o = config_.options;
   MaskCompletionOptions completion;

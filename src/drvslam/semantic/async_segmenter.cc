@@ -33,6 +33,7 @@ AsyncSegmenter::~AsyncSegmenter() {
 }
 
 void AsyncSegmenter::Submit(std::size_t frame_index, double timestamp, const cv::Mat& bgr) {
+  bool keep_waiting_frame = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (has_submitted_ && frame_index <= last_index_) {
@@ -42,6 +43,7 @@ void AsyncSegmenter::Submit(std::size_t frame_index, double timestamp, const cv:
     }
     has_submitted_ = true;
     last_index_ = frame_index;
+    keep_waiting_frame = options_.drop_when_busy && KeptFrameWaitsLocked();
     slots_[frame_index] = Slot{};
     ++stats_.submitted;
   }
@@ -50,8 +52,10 @@ void AsyncSegmenter::Submit(std::size_t frame_index, double timestamp, const cv:
     Run(job);
     return;
   }
-  const bool accepted =
-      options_.drop_when_busy ? queue_.PushDropOldest(std::move(job)) : queue_.Push(std::move(job));
+  // A kept frame the worker has taken meanwhile left room: TryPush then queues this one.
+  const bool accepted = !options_.drop_when_busy ? queue_.Push(std::move(job))
+                        : keep_waiting_frame     ? queue_.TryPush(std::move(job))
+                                                 : queue_.PushDropOldest(std::move(job));
   if (!accepted) {
     std::lock_guard<std::mutex> lock(mutex_);
     slots_[frame_index].state = State::kDropped;
@@ -224,6 +228,26 @@ std::shared_ptr<const SegmentedFrame> AsyncSegmenter::TryGet(std::size_t frame_i
   const auto slot = slots_.find(frame_index);
   if (slot == slots_.end() || slot->second.state != State::kDone) return nullptr;
   return slot->second.result;
+}
+
+void AsyncSegmenter::Keep(std::size_t frame_index) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto slot = slots_.find(frame_index);
+  if (slot != slots_.end() && slot->second.state == State::kQueued) slot->second.kept = true;
+}
+
+bool AsyncSegmenter::Pending(std::size_t frame_index) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto slot = slots_.find(frame_index);
+  return slot != slots_.end() &&
+         (slot->second.state == State::kQueued || slot->second.state == State::kRunning);
+}
+
+bool AsyncSegmenter::KeptFrameWaitsLocked() const {
+  for (const auto& [index, slot] : slots_) {
+    if (slot.state == State::kQueued && slot.kept) return true;
+  }
+  return false;
 }
 
 std::shared_ptr<const SegmentedFrame> AsyncSegmenter::Latest() const {

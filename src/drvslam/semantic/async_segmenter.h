@@ -76,6 +76,12 @@ class AsyncSegmenter {
   std::optional<double> ExpectedWaitMs(std::size_t frame_index) const;
   // That frame's result when it is finished, else nullptr; never blocks.
   std::shared_ptr<const SegmentedFrame> TryGet(std::size_t frame_index) const;
+  // With drop_when_busy: a frame still waiting for the network is not replaced by newer ones
+  // (they are dropped instead until the network takes it). For frames whose masks are wanted
+  // even late (a keyframe's). No effect on a frame already taken, finished or unknown.
+  void Keep(std::size_t frame_index);
+  // Whether the frame waits for the network or is being segmented: its result may still come.
+  bool Pending(std::size_t frame_index) const;
   // The finished frame with the highest index, or nullptr; never blocks.
   std::shared_ptr<const SegmentedFrame> Latest() const;
 
@@ -93,6 +99,7 @@ class AsyncSegmenter {
     std::chrono::steady_clock::time_point started;  // when the network took it
     std::shared_ptr<const SegmentedFrame> result;
     std::exception_ptr error;
+    bool kept = false;  // Keep(): newer frames do not replace it while it waits
   };
   struct Job {
     std::size_t frame_index;
@@ -105,6 +112,8 @@ class AsyncSegmenter {
   void Run(const Job& job);
   // Forgets finished slots beyond keep_results. Requires mutex_.
   void TrimLocked();
+  // Whether a kept frame waits in the queue. Requires mutex_.
+  bool KeptFrameWaitsLocked() const;
 
   std::shared_ptr<Segmenter> segmenter_;
   AsyncSegmenterOptions options_;

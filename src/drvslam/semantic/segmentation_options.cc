@@ -69,6 +69,9 @@ const OptionTable<SegmentationOptions>& SegmentationOptionTable() {
         .Real("keyframeWaitMs", &S::keyframe_wait_ms, Bounds::In(0, 1000).Note("ms"),
               "--realtime: a likely keyframe waits at most this long for masks due by then (0 = "
               "never).")
+        .Bool("lateKeyFrameMasks", &S::late_keyframe_masks,
+              "--realtime: a keyframe made without its masks has them segmented later, and its "
+              "points on potentially-moving objects are then culled.")
         .Real("backoffPasses", &S::backoff_passes, Bounds::In(0, 100).Note("0 = never"),
               "--realtime: after skipped frames the network rests this many of its pass times.")
         .Text("masksDir", &S::masks_dir, "Mask files folder (masks); relative to the dataset.")

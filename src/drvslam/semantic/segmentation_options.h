@@ -53,6 +53,10 @@ struct SegmentationOptions {
   // makes the next camera frame replace the one after it: with 50 ms a 30 Hz run skipped 6-19
   // frames of 300, with 15 ms 5-8 (3 runs each). 0 = keyframes never wait.
   double keyframe_wait_ms = 15.0;
+  // Segmentation.lateKeyFrameMasks (--realtime only): a keyframe made without its own masks
+  // keeps its image queued for the network, and when the masks come the points it created on
+  // potentially-moving objects are culled (dynamic/late_keyframe_masks.h).
+  bool late_keyframe_masks = true;
   // Segmentation.backoffPasses (--realtime only): when frames are skipped because tracking fell
   // behind, the network takes no new frame for this many of its own pass times
   // (semantic/segmentation_pacer.h); 0 = it never backs off. Off by default: on the real Bonn
