@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "drvslam/map/frame_features.h"
@@ -15,16 +16,21 @@ namespace {
 
 class LateKeyFrameMasksTest : public ::testing::Test {
  protected:
-  // A keyframe with keypoints at x = 10, 30, 50, 70 (y = 20) in a 100 x 40 image.
-  std::shared_ptr<KeyFrame> KeyFrameWithFourKeypoints(long frame_id) {
+  // Keypoints at x = 10, 30, 50, 70 (y = 20) in a 100 x 40 image.
+  static std::shared_ptr<const FrameFeatures> FourKeypoints() {
     const auto geometry =
         std::make_shared<SensorGeometry>(CameraOptions{}, ScalePyramid(8, 1.2), 3.0);
     std::vector<cv::KeyPoint> keypoints;
     for (const float x : {10.f, 30.f, 50.f, 70.f}) keypoints.emplace_back(x, 20.f, 31.f);
-    auto features = std::make_shared<const FrameFeatures>(
-        geometry, keypoints, cv::Mat::zeros(4, 32, CV_8UC1), cv::Mat());
-    auto keyframe = std::make_shared<KeyFrame>(map_.NextKeyFrameId(), frame_id, 0.0, features,
-                                               SE3(), std::vector<std::shared_ptr<MapPoint>>());
+    return std::make_shared<const FrameFeatures>(geometry, keypoints,
+                                                 cv::Mat::zeros(4, 32, CV_8UC1), cv::Mat());
+  }
+
+  // A keyframe of the map with FourKeypoints.
+  std::shared_ptr<KeyFrame> KeyFrameWithFourKeypoints(long frame_id) {
+    auto keyframe =
+        std::make_shared<KeyFrame>(map_.NextKeyFrameId(), frame_id, 0.0, FourKeypoints(), SE3(),
+                                   std::vector<std::shared_ptr<MapPoint>>());
     map_.AddKeyFrame(keyframe);
     return keyframe;
   }
@@ -66,7 +72,7 @@ TEST_F(LateKeyFrameMasksTest, CullsTheKeyFramesOwnPointsOnMoversOnly) {
   LateKeyFrameMasks late;
   late.Expect(7, keyframe);
   EXPECT_EQ(late.Awaited(), std::vector<std::size_t>{7});
-  EXPECT_EQ(late.Apply(7, instances, potentially_moving, map_), 1);
+  EXPECT_EQ(late.Apply(7, instances, potentially_moving, map_), std::optional<int>(1));
   EXPECT_TRUE(created_on_person->IsBad());
   EXPECT_FALSE(older_on_person->IsBad());  // mapped before, by a keyframe of its own
   EXPECT_FALSE(created_on_table->IsBad());
@@ -74,26 +80,33 @@ TEST_F(LateKeyFrameMasksTest, CullsTheKeyFramesOwnPointsOnMoversOnly) {
   EXPECT_EQ(map_.MapPointCount(), 3u);
   EXPECT_EQ(keyframe->MapPointAt(0), nullptr);
   EXPECT_TRUE(late.Awaited().empty());
-  // Applied once: the same masks again cull nothing.
-  EXPECT_EQ(late.Apply(7, instances, potentially_moving, map_), 0);
+  // Applied once: the frame is no longer awaited.
+  EXPECT_EQ(late.Apply(7, instances, potentially_moving, map_), std::nullopt);
 }
 
 TEST_F(LateKeyFrameMasksTest, FramesGivenUpOrWhoseKeyFrameIsGoneCullNothing) {
   const std::vector<Instance> everywhere{Covering(0, 100, 0)};
   const std::vector<bool> moving{true};
   LateKeyFrameMasks late;
-  auto given_up = KeyFrameWithFourKeypoints(2);
+  const auto given_up = KeyFrameWithFourKeypoints(2);
   const auto kept_point = PointAt(given_up, 0, given_up);
   late.Expect(2, given_up);
   late.GiveUp(2);
-  EXPECT_EQ(late.Apply(2, everywhere, moving, map_), 0);
+  EXPECT_EQ(late.Apply(2, everywhere, moving, map_), std::nullopt);
   EXPECT_FALSE(kept_point->IsBad());
 
-  auto culled_keyframe = KeyFrameWithFourKeypoints(5);
-  PointAt(culled_keyframe, 1, culled_keyframe);
-  late.Expect(5, culled_keyframe);
-  culled_keyframe->SetBad();
-  EXPECT_EQ(late.Apply(5, everywhere, moving, map_), 0);
+  // Removed by local mapping (keyframe culling) before its masks came.
+  const auto removed = KeyFrameWithFourKeypoints(5);
+  late.Expect(5, removed);
+  removed->SetBad();
+  EXPECT_EQ(late.Apply(5, everywhere, moving, map_), std::nullopt);
+
+  // Freed (the map was reset) before its masks came.
+  auto freed = std::make_shared<KeyFrame>(map_.NextKeyFrameId(), 6, 0.0, FourKeypoints(), SE3(),
+                                          std::vector<std::shared_ptr<MapPoint>>());
+  late.Expect(6, freed);
+  freed.reset();
+  EXPECT_EQ(late.Apply(6, everywhere, moving, map_), std::nullopt);
 
   late.Expect(9, KeyFrameWithFourKeypoints(9));
   late.Expect(8, KeyFrameWithFourKeypoints(8));

@@ -200,21 +200,43 @@ TEST(AsyncSegmenterTest, AKeptFrameIsSegmentedAndNewerOnesAreDroppedWhileItWaits
 }
 
 TEST(AsyncSegmenterTest, KeepingARunningOrFinishedFrameChangesNothing) {
-  // Frame 1 is already on the network when it is kept: frame 2 waits, frame 3 replaces it.
+  // Frame 1 is on the network when it is kept: frame 2 waits and frame 3 replaces it as usual.
+  // Frame 3, kept once finished, does not stop frame 5 replacing frame 4 behind a held pass.
   HeldRealtimeSegmenter held;
   auto& [fake, segmenter] = held;
   fake->AwaitStarted(1);
   segmenter.Keep(1);
-  EXPECT_TRUE(segmenter.Pending(1));
   segmenter.Submit(2, 0.0, kImage);
   segmenter.Submit(3, 0.0, kImage);
   fake->Open();
   EXPECT_EQ(segmenter.Wait(3)->segmentation.frame_index, 3u);
   segmenter.Keep(3);
+  fake->Close();
   segmenter.Submit(4, 0.0, kImage);
-  EXPECT_EQ(segmenter.Wait(4)->segmentation.frame_index, 4u);
-  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{1, 3, 4}));
-  EXPECT_EQ(segmenter.Stats().dropped, 1u);
+  fake->AwaitStarted(3);  // the third pass: frame 4
+  segmenter.Submit(5, 0.0, kImage);
+  segmenter.Submit(6, 0.0, kImage);
+  fake->Open();
+  EXPECT_EQ(segmenter.Wait(6)->segmentation.frame_index, 6u);
+  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{1, 3, 4, 6}));
+  EXPECT_EQ(segmenter.Stats().dropped, 2u);  // frames 2 and 5
+}
+
+TEST(AsyncSegmenterTest, AKeptFrameOutlivesTheResultsForgottenWhileItWaits) {
+  // Frame 2 is kept behind a pass while 5 newer frames are refused, more than keep_results (2):
+  // neither it nor its result is forgotten for them (dropped frames hold no result).
+  AsyncSegmenterOptions options = RealtimeOptions();
+  options.keep_results = 2;
+  HeldRealtimeSegmenter held(options);
+  auto& [fake, segmenter] = held;
+  fake->AwaitStarted(1);
+  segmenter.Submit(2, 0.0, kImage);
+  segmenter.Keep(2);
+  for (std::size_t i = 3; i <= 7; ++i) segmenter.Submit(i, 0.0, kImage);
+  fake->Open();
+  EXPECT_EQ(segmenter.Wait(2)->segmentation.frame_index, 2u);
+  EXPECT_NE(segmenter.TryGet(2), nullptr);
+  EXPECT_EQ(fake->Started(), (std::vector<std::size_t>{1, 2}));
 }
 
 TEST(AsyncSegmenterTest, WaitForGivesUpAtItsDeadline) {

@@ -4,7 +4,8 @@
 // The stages come from StageTimings::Record calls in src/drvslam:
 //   per frame, on the tracking thread (System::TrackRGBD): "total" and its parts "extraction",
 //     "tracking", "dense_handoff", and the dynamic front end's "segmentation_wait", "removal",
-//     "motion_consistency"; "observer" (handing the frame to a live viewer) right after it;
+//     "motion_consistency" and "late_keyframe_masks" (--realtime, only on frames while a keyframe
+//     awaits its masks); "observer" (handing the frame to a live viewer) right after it;
 //   per frame, beside the tracking thread: "flow" (a helper thread, overlapping extraction) and
 //     "segmentation" (the network's time on the segmentation thread);
 //   per keyframe, on the other threads (inline in the tracking thread with --sequential):

@@ -163,7 +163,8 @@ struct DynamicStats {
   std::size_t keyframe_waits = 0;
   std::size_t keyframe_waits_fresh = 0;
   // Keyframes made without their own masks (--realtime, Segmentation.lateKeyFrameMasks): those
-  // whose masks came later, those whose never did, and the points culled by the late masks.
+  // whose masks came later while the keyframe was still in the map, those whose never came, and
+  // the points culled by the late masks.
   std::size_t keyframes_late_masks = 0;
   std::size_t keyframes_late_missed = 0;
   std::size_t late_points_culled = 0;

@@ -142,22 +142,32 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
 }
 
 void DynamicFrontEnd::ApplyLateKeyFrameMasks(const cv::Size& size) {
+  if (late_keyframes_.Awaited().empty()) return;
+  const Stopwatch watch;
   for (const std::size_t frame_index : late_keyframes_.Awaited()) {
-    if (const auto late = async_->TryGet(frame_index)) {
-      const std::vector<Instance>& instances = late->segmentation.instances;
-      CheckMasks(instances, size, frame_index);
-      std::vector<bool> potentially_moving(instances.size(), false);
-      for (std::size_t k = 0; k < instances.size(); ++k) {
-        potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
+    // Pending first: a pass that finishes between the two looks is still found by TryGet.
+    const bool pending = async_->Pending(frame_index);
+    const auto late = async_->TryGet(frame_index);
+    if (!late) {
+      if (!pending) {
+        late_keyframes_.GiveUp(frame_index);
+        ++stats_.keyframes_late_missed;
       }
-      stats_.late_points_culled +=
-          late_keyframes_.Apply(frame_index, instances, potentially_moving, map_);
-      ++stats_.keyframes_late_masks;
-    } else if (!async_->Pending(frame_index)) {
-      late_keyframes_.GiveUp(frame_index);
-      ++stats_.keyframes_late_missed;
+      continue;
     }
+    const std::vector<Instance>& instances = late->segmentation.instances;
+    CheckMasks(instances, size, frame_index);
+    std::vector<bool> potentially_moving(instances.size(), false);
+    for (std::size_t k = 0; k < instances.size(); ++k) {
+      potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
+    }
+    const std::optional<int> culled =
+        late_keyframes_.Apply(frame_index, instances, potentially_moving, map_);
+    if (!culled) continue;  // the keyframe is gone
+    ++stats_.keyframes_late_masks;
+    stats_.late_points_culled += static_cast<std::size_t>(*culled);
   }
+  Record("late_keyframe_masks", watch.ElapsedMs());
 }
 
 void DynamicFrontEnd::CompleteMasks(const cv::Mat& depth, MotionRegions* regions) {

@@ -33,16 +33,17 @@ std::vector<std::size_t> LateKeyFrameMasks::Awaited() const {
   return frames;
 }
 
-int LateKeyFrameMasks::Apply(std::size_t frame_index, const std::vector<Instance>& instances,
-                             const std::vector<bool>& potentially_moving, Map& map) {
+std::optional<int> LateKeyFrameMasks::Apply(std::size_t frame_index,
+                                            const std::vector<Instance>& instances,
+                                            const std::vector<bool>& potentially_moving, Map& map) {
   const auto awaited = awaited_.find(frame_index);
-  if (awaited == awaited_.end()) return 0;
+  if (awaited == awaited_.end()) return std::nullopt;
   const std::shared_ptr<KeyFrame> keyframe = awaited->second.lock();
   awaited_.erase(awaited);
-  if (!keyframe || keyframe->IsBad()) return 0;
+  if (!keyframe || keyframe->IsBad()) return std::nullopt;
   const std::vector<cv::KeyPoint>& keypoints = keyframe->Features().Keypoints();
-  // As MovingPointCuller: under the update mutex, so a frame is tracked against one state of
-  // the map.
+  // Under the update mutex, as MovingPointCuller: a bundle adjustment's write-back or a loop
+  // correction does not run in the middle of the culling.
   std::lock_guard<std::mutex> lock(map.UpdateMutex());
   const std::vector<std::shared_ptr<MapPoint>> points = keyframe->MapPoints();
   int culled = 0;

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "drvslam/map/keyframe.h"
@@ -28,10 +29,10 @@ class LateKeyFrameMasks {
   // Frame `frame_index`'s own masks came: marks bad and erases from `map` the points its
   // keyframe created (first observed there, not bad) whose keypoints lie on an instance with
   // potentially_moving[k] true, holding map.UpdateMutex() (the caller must not). The frame is no
-  // longer awaited. Returns how many points were culled (0 for a frame not awaited, or a
-  // keyframe removed since).
-  int Apply(std::size_t frame_index, const std::vector<Instance>& instances,
-            const std::vector<bool>& potentially_moving, Map& map);
+  // longer awaited. Returns how many points were culled; nullopt for a frame not awaited or a
+  // keyframe gone since (removed by local mapping, or freed).
+  std::optional<int> Apply(std::size_t frame_index, const std::vector<Instance>& instances,
+                           const std::vector<bool>& potentially_moving, Map& map);
   // The frame's masks will not come (dropped, failed, no longer kept): it is no longer awaited.
   void GiveUp(std::size_t frame_index);
 

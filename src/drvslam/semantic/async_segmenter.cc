@@ -133,12 +133,23 @@ void AsyncSegmenter::Run(const Job& job) {
 }
 
 void AsyncSegmenter::TrimLocked() {
-  std::size_t finished = 0;
+  // keep_results bounds the results (each holds an image and its masks); a dropped frame holds
+  // nothing and is remembered longer (Wait names it dropped), up to kDroppedKept. Only finished
+  // slots go: a kept frame waiting behind a long pass stays, however many newer frames were
+  // refused meanwhile, and its result then counts like any other.
+  const auto unfinished = [](const Slot& slot) {
+    return slot.state == State::kQueued || slot.state == State::kRunning;
+  };
+  std::size_t results = 0;
+  std::size_t dropped = 0;
   for (auto it = slots_.rbegin(); it != slots_.rend(); ++it) {
-    if (it->second.state == State::kQueued || it->second.state == State::kRunning) continue;
-    if (++finished > options_.keep_results) {
-      slots_.erase(slots_.begin(), it.base());
-      // Older unfinished slots cannot exist: the worker finishes frames in order.
+    if (unfinished(it->second)) continue;
+    const bool beyond = it->second.state == State::kDropped ? ++dropped > kDroppedKept
+                                                            : ++results > options_.keep_results;
+    if (beyond) {
+      for (auto old = slots_.begin(); old != it.base();) {
+        old = unfinished(old->second) ? std::next(old) : slots_.erase(old);
+      }
       return;
     }
   }

@@ -3,8 +3,9 @@
 // that frame's masks. In sequential mode Submit() segments inline, so runs are deterministic.
 // With drop_when_busy (sensor-rate tracking) the worker's input is a one-frame slot: Submit never
 // blocks, a newer frame replaces one still waiting (counted as dropped), so whenever the network
-// becomes free it takes the newest frame; Latest() gives the newest finished masks and
-// WaitFor() a frame's own masks within a bounded time, neither blocking longer.
+// becomes free it takes the newest frame, unless the waiting one is kept (Keep: a keyframe's
+// image), and then the newer frames are dropped instead; Latest() gives the newest finished
+// masks and WaitFor() a frame's own masks within a bounded time, neither blocking longer.
 #pragma once
 
 #include <chrono>
@@ -37,7 +38,7 @@ struct AsyncSegmenterOptions {
   bool sequential = false;         // segment inside Submit() on the caller's thread
   std::size_t queue_capacity = 2;  // frames waiting for the worker (1 with drop_when_busy)
   bool drop_when_busy = false;     // a newer frame replaces a waiting one instead of blocking
-  std::size_t keep_results = 8;    // finished frames kept for Wait()/TryGet()
+  std::size_t keep_results = 8;    // results (segmented or failed frames) kept for Wait()/TryGet()
 };
 
 struct AsyncSegmenterStats {
@@ -110,7 +111,11 @@ class AsyncSegmenter {
   void WorkerLoop();
   // Segments one job and records the outcome in its slot.
   void Run(const Job& job);
-  // Forgets finished slots beyond keep_results. Requires mutex_.
+  // Dropped frames remembered at most (TrimLocked).
+  static constexpr std::size_t kDroppedKept = 64;
+
+  // Forgets results beyond keep_results and dropped frames beyond kDroppedKept, with every
+  // finished slot older than those. Requires mutex_.
   void TrimLocked();
   // Whether a kept frame waits in the queue. Requires mutex_.
   bool KeptFrameWaitsLocked() const;
