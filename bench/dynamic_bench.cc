@@ -28,6 +28,7 @@
 #include "drvslam/tools/synth/synth_generator.h"
 #include "drvslam/tools/truth/ground_truth_segmenter.h"
 #include "drvslam/tracking/frame_factory.h"
+#include "test_support/map_points.h"
 
 namespace {
 
@@ -250,11 +251,7 @@ void BM_LateKeyFrameMasks(benchmark::State& state) {
       auto keyframe = std::make_shared<KeyFrame>(0, 1, 0.0, features, SE3(),
                                                  std::vector<std::shared_ptr<MapPoint>>());
       for (std::size_t i = 0; i < keypoints.size(); ++i) {
-        auto point =
-            std::make_shared<MapPoint>(map.NextMapPointId(), Eigen::Vector3d(0, 0, 2), keyframe);
-        point->AddObservation(keyframe, static_cast<int>(i));
-        keyframe->AddMapPoint(point, i);
-        map.AddMapPoint(point);
+        test::AddPointSeenBy(map, keyframe, i, Eigen::Vector3d(0, 0, 2));
       }
       LateKeyFrameMasks late;
       late.Expect(1, keyframe);

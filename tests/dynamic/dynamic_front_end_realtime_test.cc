@@ -11,6 +11,7 @@
 #include "drvslam/dynamic/dynamic_front_end.h"
 #include "drvslam/map/map_point.h"
 #include "dynamic_front_end_fixture.h"
+#include "test_support/map_points.h"
 
 namespace drvslam {
 namespace {
@@ -391,11 +392,7 @@ TEST_F(DynamicFrontEndTest, AKeyFrameMadeWithoutItsMasksLosesItsPointsOnPeopleWh
   std::vector<std::shared_ptr<MapPoint>> on_person;
   std::vector<std::shared_ptr<MapPoint>> elsewhere;
   for (std::size_t i = 0; i < tracked.Size(); ++i) {
-    auto point =
-        std::make_shared<MapPoint>(map_.NextMapPointId(), Eigen::Vector3d(0, 0, 3), keyframe);
-    point->AddObservation(keyframe, static_cast<int>(i));
-    keyframe->AddMapPoint(point, i);
-    map_.AddMapPoint(point);
+    auto point = test::AddPointSeenBy(map_, keyframe, i, Eigen::Vector3d(0, 0, 3));
     const cv::Point2f p = tracked.Features().Keypoints()[i].pt;
     const bool on = person.at<unsigned char>(static_cast<int>(p.y), static_cast<int>(p.x)) != 0;
     (on ? on_person : elsewhere).push_back(point);

@@ -10,6 +10,7 @@
 
 #include "drvslam/map/frame_features.h"
 #include "drvslam/map/map_point.h"
+#include "test_support/map_points.h"
 
 namespace drvslam {
 namespace {
@@ -38,12 +39,7 @@ class LateKeyFrameMasksTest : public ::testing::Test {
   // A point at keypoint `index` of `keyframe`, first observed by `creator`.
   std::shared_ptr<MapPoint> PointAt(const std::shared_ptr<KeyFrame>& keyframe, std::size_t index,
                                     const std::shared_ptr<KeyFrame>& creator) {
-    auto point =
-        std::make_shared<MapPoint>(map_.NextMapPointId(), Eigen::Vector3d(0, 0, 2), creator);
-    point->AddObservation(keyframe, static_cast<int>(index));
-    keyframe->AddMapPoint(point, index);
-    map_.AddMapPoint(point);
-    return point;
+    return test::AddPointSeenBy(map_, keyframe, index, Eigen::Vector3d(0, 0, 2), creator);
   }
 
   // Instance of `class_id` whose mask covers x in [x0, x1) of the 100 x 40 image.
