@@ -24,13 +24,19 @@ using test::Render;
 using test::ScriptedSegmenter;
 using test::Sequence;
 
-// --realtime over `network`, carrying masks for `carry_frames` frames, where the rendered
-// person (more than 0.01 of the image) counts as a crowd (Dynamic.largeShare 0.01).
-DynamicFrontEndConfig CrowdConfig(std::shared_ptr<Segmenter> network, int carry_frames) {
+// --realtime over `network`, carrying masks for `carry_frames` frames.
+DynamicFrontEndConfig CarryConfig(std::shared_ptr<Segmenter> network, int carry_frames) {
   DynamicFrontEndConfig config;
   config.segmenter = std::move(network);
   config.realtime = true;
   config.segmentation.carry_frames = carry_frames;
+  return config;
+}
+
+// The same, where the rendered person (more than 0.01 of the image) counts as a crowd
+// (Dynamic.largeShare 0.01).
+DynamicFrontEndConfig CrowdConfig(std::shared_ptr<Segmenter> network, int carry_frames) {
+  DynamicFrontEndConfig config = CarryConfig(std::move(network), carry_frames);
   config.options.large_share = 0.01;
   return config;
 }
@@ -181,11 +187,7 @@ TEST_F(DynamicFrontEndTest, RealtimeMasksOfMoversThatAgeOutVetoKeyFramesForABoun
       for (Instance& instance : frame_masks.instances) instance.class_id = class_id;
     }
     auto segmenter = std::make_shared<GatedSegmenter>(masks);
-    DynamicFrontEndConfig config;
-    config.segmenter = segmenter;
-    config.realtime = true;
-    config.segmentation.carry_frames = 2;
-    DynamicFrontEnd stage(config, 1000, map_, nullptr);
+    DynamicFrontEnd stage(CarryConfig(segmenter, 2), 1000, map_, nullptr);
     const OpenAtExit<GatedSegmenter> open_at_exit(*segmenter);
     const bool person = class_id == 0;
     const bool unchecked[] = {false, false, false, person, person, false, false};
@@ -212,11 +214,7 @@ TEST_F(DynamicFrontEndTest, RealtimeMasksOfASlowNetworkAreCarriedUntilItStalls) 
   std::set<std::size_t> held;
   for (std::size_t f = 1; f < static_cast<std::size_t>(frames); ++f) held.insert(f);
   auto segmenter = std::make_shared<HoldingSegmenter>(sequence.masks, 0, held);
-  DynamicFrontEndConfig config;
-  config.segmenter = segmenter;
-  config.realtime = true;
-  config.segmentation.carry_frames = 2;
-  DynamicFrontEnd stage(config, 1000, map_, nullptr);
+  DynamicFrontEnd stage(CarryConfig(segmenter, 2), 1000, map_, nullptr);
   const OpenAtExit<HoldingSegmenter> release_at_exit(*segmenter);
   std::vector<bool> has_masks;
   std::vector<bool> vetoed;
@@ -255,10 +253,7 @@ TEST_F(DynamicFrontEndTest, RealtimeCrowdSeenThroughCarriedMasksVetoesKeyFrames)
   const Sequence sequence = Render(frames, false, nullptr, [](int f) { return 0.04 * f; });
   for (const double large_share : {0.01, 0.3}) {
     auto segmenter = std::make_shared<GatedSegmenter>(sequence.masks);
-    DynamicFrontEndConfig config;
-    config.segmenter = segmenter;
-    config.realtime = true;
-    config.segmentation.carry_frames = 4;
+    DynamicFrontEndConfig config = CarryConfig(segmenter, 4);
     config.options.large_share = large_share;
     DynamicFrontEnd stage(config, 1000, map_, nullptr);
     const OpenAtExit<GatedSegmenter> open_at_exit(*segmenter);

@@ -304,11 +304,7 @@ DynamicFrontEnd::MotionRegions DynamicFrontEnd::ConstrainMotionRegions(const Fra
   if (carry_objects_) segmentation = CarriedMasksFor(frame.Timestamp(), regions.size, tracks);
   if (async_) ApplyLateKeyFrameMasks(regions.size);
   regions.instances = std::move(segmentation.instances);
-  regions.potentially_moving.assign(regions.instances.size(), false);
-  for (std::size_t k = 0; k < regions.instances.size(); ++k) {
-    regions.potentially_moving[k] =
-        classes_ && classes_->IsPotentiallyMoving(regions.instances[k].class_id);
-  }
+  regions.potentially_moving = PotentiallyMoving(regions.instances);
   const Stopwatch test_watch;
   regions.segmented = regions.instances;
   if (o.mask_completion && !depth.empty()) CompleteMasks(depth, &regions);

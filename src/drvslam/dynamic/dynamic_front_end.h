@@ -312,6 +312,8 @@ class DynamicFrontEnd {
   // Realtime keyframe priority: a likely keyframe waits up to Segmentation.keyframeWaitMs for
   // its own masks when the network is on its image or next to be; notes whether it has them.
   void AwaitKeyFrameMasks();
+  // Per instance, whether its class may move (all false without a segmenter's class table).
+  std::vector<bool> PotentiallyMoving(const std::vector<Instance>& instances) const;
   // Keyframes made without their own masks whose masks have come since: their points on
   // potentially-moving objects go (LateKeyFrameMasks). `size`: the image's, to check the masks.
   void ApplyLateKeyFrameMasks(const cv::Size& size);

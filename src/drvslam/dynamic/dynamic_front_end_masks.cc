@@ -141,10 +141,19 @@ Segmentation DynamicFrontEnd::CarriedMasksFor(double timestamp, const cv::Size& 
   return out;
 }
 
+std::vector<bool> DynamicFrontEnd::PotentiallyMoving(const std::vector<Instance>& instances) const {
+  std::vector<bool> moving(instances.size(), false);
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
+  }
+  return moving;
+}
+
 void DynamicFrontEnd::ApplyLateKeyFrameMasks(const cv::Size& size) {
-  if (late_keyframes_.Awaited().empty()) return;
+  const std::vector<std::size_t> awaited = late_keyframes_.Awaited();
+  if (awaited.empty()) return;
   const Stopwatch watch;
-  for (const std::size_t frame_index : late_keyframes_.Awaited()) {
+  for (const std::size_t frame_index : awaited) {
     // Pending first: a pass that finishes between the two looks is still found by TryGet.
     const bool pending = async_->Pending(frame_index);
     const auto late = async_->TryGet(frame_index);
@@ -157,12 +166,8 @@ void DynamicFrontEnd::ApplyLateKeyFrameMasks(const cv::Size& size) {
     }
     const std::vector<Instance>& instances = late->segmentation.instances;
     CheckMasks(instances, size, frame_index);
-    std::vector<bool> potentially_moving(instances.size(), false);
-    for (std::size_t k = 0; k < instances.size(); ++k) {
-      potentially_moving[k] = classes_ && classes_->IsPotentiallyMoving(instances[k].class_id);
-    }
     const std::optional<int> culled =
-        late_keyframes_.Apply(frame_index, instances, potentially_moving, map_);
+        late_keyframes_.Apply(frame_index, instances, PotentiallyMoving(instances), map_);
     if (!culled) continue;  // the keyframe is gone
     ++stats_.keyframes_late_masks;
     stats_.late_points_culled += static_cast<std::size_t>(*culled);

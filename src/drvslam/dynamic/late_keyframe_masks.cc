@@ -7,6 +7,8 @@
 namespace drvslam {
 namespace {
 
+// Every instance is looked at (not only the first that holds p, as InstanceAt does): a still
+// object's mask lying over a person must not hide the person.
 bool OnPotentialMover(const std::vector<Instance>& instances,
                       const std::vector<bool>& potentially_moving, const cv::Point2f& p) {
   const int x = static_cast<int>(p.x);

@@ -137,18 +137,15 @@ void AsyncSegmenter::TrimLocked() {
   // nothing and is remembered longer (Wait names it dropped), up to kDroppedKept. Only finished
   // slots go: a kept frame waiting behind a long pass stays, however many newer frames were
   // refused meanwhile, and its result then counts like any other.
-  const auto unfinished = [](const Slot& slot) {
-    return slot.state == State::kQueued || slot.state == State::kRunning;
-  };
   std::size_t results = 0;
   std::size_t dropped = 0;
   for (auto it = slots_.rbegin(); it != slots_.rend(); ++it) {
-    if (unfinished(it->second)) continue;
+    if (it->second.Unfinished()) continue;
     const bool beyond = it->second.state == State::kDropped ? ++dropped > kDroppedKept
                                                             : ++results > options_.keep_results;
     if (beyond) {
       for (auto old = slots_.begin(); old != it.base();) {
-        old = unfinished(old->second) ? std::next(old) : slots_.erase(old);
+        old = old->second.Unfinished() ? std::next(old) : slots_.erase(old);
       }
       return;
     }
@@ -165,8 +162,7 @@ std::shared_ptr<const SegmentedFrame> AsyncSegmenter::Wait(std::size_t frame_ind
   // Look the slot up afresh on every wake-up: trimming may erase it meanwhile.
   finished_.wait(lock, [&] {
     const auto slot = slots_.find(frame_index);
-    return slot == slots_.end() ||
-           (slot->second.state != State::kQueued && slot->second.state != State::kRunning);
+    return slot == slots_.end() || !slot->second.Unfinished();
   });
   const auto slot = slots_.find(frame_index);
   if (slot == slots_.end()) throw missing();
@@ -191,8 +187,7 @@ std::shared_ptr<const SegmentedFrame> AsyncSegmenter::WaitFor(std::size_t frame_
   // waiting for it just runs into the deadline.
   finished_.wait_until(lock, deadline, [&] {
     const auto slot = slots_.find(frame_index);
-    return slot == slots_.end() ||
-           (slot->second.state != State::kQueued && slot->second.state != State::kRunning);
+    return slot == slots_.end() || !slot->second.Unfinished();
   });
   const auto slot = slots_.find(frame_index);
   if (slot == slots_.end() || slot->second.state != State::kDone) return nullptr;
@@ -250,8 +245,7 @@ void AsyncSegmenter::Keep(std::size_t frame_index) {
 bool AsyncSegmenter::Pending(std::size_t frame_index) const {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto slot = slots_.find(frame_index);
-  return slot != slots_.end() &&
-         (slot->second.state == State::kQueued || slot->second.state == State::kRunning);
+  return slot != slots_.end() && slot->second.Unfinished();
 }
 
 bool AsyncSegmenter::KeptFrameWaitsLocked() const {

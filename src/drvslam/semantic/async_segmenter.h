@@ -101,6 +101,8 @@ class AsyncSegmenter {
     std::shared_ptr<const SegmentedFrame> result;
     std::exception_ptr error;
     bool kept = false;  // Keep(): newer frames do not replace it while it waits
+    // Waiting for the network or being segmented: its result may still come.
+    bool Unfinished() const { return state == State::kQueued || state == State::kRunning; }
   };
   struct Job {
     std::size_t frame_index;
