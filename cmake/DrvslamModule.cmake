@@ -126,5 +126,21 @@ function(drvslam_test name)
     set(ARG_TIMEOUT 600)
   endif()
   include(GoogleTest)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${ARG_TIMEOUT})
+  # Rendered synthetic sequences are shared by the test processes
+  # (tests/integration/synth_render_cache.h).
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${ARG_TIMEOUT}
+    ENVIRONMENT "DRVSLAM_TEST_SYNTH_CACHE=${CMAKE_BINARY_DIR}/test-synth-cache")
+endfunction()
+
+# drvslam_test_uses_cli(NAME): the test runs the built CLI (DRVSLAM_CLI), at least to render its
+# synthetic sequences, so the CLI is built first. With DRVSLAM_TESTS_WITHOUT_CLI the tests render
+# with another build's CLI (DRVSLAM_TEST_SYNTH_CLI) and run none of the CLI's own code: the TSan
+# job (scripts/sanitizers.sh) then does not build an instrumented CLI, nor the ROS 2 node and
+# apps/ that only the CLI links.
+option(DRVSLAM_TESTS_WITHOUT_CLI
+       "Tests do not build the CLI: they render with DRVSLAM_TEST_SYNTH_CLI (the TSan job)" OFF)
+function(drvslam_test_uses_cli name)
+  if(NOT DRVSLAM_TESTS_WITHOUT_CLI)
+    add_dependencies(${name} drvslam_cli)
+  endif()
 endfunction()

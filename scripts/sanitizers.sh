@@ -69,9 +69,11 @@ case "$kind" in
       dense_ghost_test
       # DenseOffWritesNoMap: a run with dense mapping off, as loop_closing_integration_test's.
       dense_run_test:-*DenseOffWritesNoMap
-      dynamic_test synth_cli_test dense_test semantic_model_test loop_test relocalization_test
-      eval_cli_test mapping_test local_bundle_adjustment_test loop_closing_test io_test
-      semantic_test feature_test core_test eval_test match_test optim_test pose_graph_test
+      dynamic_test dynamic_realtime_test synth_cli_test dense_test dense_mapper_test
+      semantic_model_test loop_test relocalization_test eval_cli_test mapping_test
+      local_bundle_adjustment_test loop_closing_test loop_closer_test io_test realtime_feeder_test
+      semantic_test async_segmenter_test feature_test core_test core_threads_test eval_test
+      match_test optim_test pose_graph_test
       rigid_transform_ransac_test tracking_test tracking_mapping_handoff_test map_file_test
       tracking_trajectory_smoother_test
     )
@@ -102,14 +104,16 @@ case "$kind" in
       frame_faults_test:*Threaded*
       # --realtime: feeder thread, one-frame slot, segmentation dropping frames, keyframe waits.
       realtime_integration_test
-      dense_test:DenseMapper.*
-      semantic_test:AsyncSegmenterTest.*
-      loop_closing_test:LoopCloserTest.*
-      io_test:RealtimeFeederTest.*
-      core_test:BoundedQueueTest.*:LatestFrameSlotTest.*:SideWorkerTest.*
+      # The unit tests of the threads' hand-offs, each binary holding only those (tests/*/
+      # CMakeLists.txt), so that this tree compiles nothing else of the unit tests.
+      dense_mapper_test
+      async_segmenter_test
+      loop_closer_test
+      realtime_feeder_test
+      core_threads_test
       # The dynamic stage's flow helper (Dynamic.flowThread): same frames as without it, and a
       # frame abandoned with its flow job in flight.
-      dynamic_test:DynamicFrontEndTest.FlowOnTheHelperThread*:DynamicFrontEndTest.AFrameAbandoned*
+      dynamic_realtime_test:DynamicFrontEndTest.FlowOnTheHelperThread*:DynamicFrontEndTest.AFrameAbandoned*
     )
     export TSAN_OPTIONS="second_deadlock_stack=1:log_path=REPORTS/tsan:${TSAN_OPTIONS:-}"
     # OpenCV's cv::parallel_for_ (the renderer's) runs on this system's OpenCV on uninstrumented
@@ -133,7 +137,12 @@ esac
 # synth_cli_test render under ASan) and is slow instrumented: a 90-frame sequence took 11 s
 # released and over 4 min under TSan; local_mapping_integration_test took 49 s under ASan
 # rendering its own, 40 s with the release CLI's.
-if [ -x build/bin/drvslam ]; then export DRVSLAM_TEST_SYNTH_CLI="$root/build/bin/drvslam"; fi
+# The same release CLI rendered the same sequences for the release build's CTest run: its cache
+# of rendered sequences (tests/integration/synth_render_cache.h) serves them here too.
+if [ -x build/bin/drvslam ]; then
+  export DRVSLAM_TEST_SYNTH_CLI="$root/build/bin/drvslam"
+  export DRVSLAM_TEST_SYNTH_CACHE="${DRVSLAM_TEST_SYNTH_CACHE:-$root/build/test-synth-cache}"
+fi
 # Third-party false positives (uninstrumented OpenCV/TBB, libgomp, Ceres), one per line with a
 # comment saying why the report is not ours: scripts/sanitizers/{lsan,tsan}.supp when needed.
 for tool in lsan tsan; do
@@ -160,7 +169,21 @@ fi
 if command -v ninja >/dev/null && [ ! -e "$build/CMakeCache.txt" ]; then
   generator=(-G Ninja)
 fi
-build_targets=(drvslam_cli)
+# The address job's tests run the instrumented CLI (end-to-end runs, `drvslam ros2`); the thread
+# job's only render their sequences with it, which the release CLI does (above), so that job
+# builds no CLI (DRVSLAM_TESTS_WITHOUT_CLI: nor the ROS 2 node and apps/ only the CLI links).
+build_targets=()
+tests_without_cli=OFF
+if [ "$kind" = thread ]; then
+  if [ -z "${DRVSLAM_TEST_SYNTH_CLI:-}" ]; then
+    echo "error: the thread job renders its sequences with the release CLI build/bin/drvslam," \
+      "which is missing: run scripts/build.sh first" >&2
+    exit 2
+  fi
+  tests_without_cli=ON
+else
+  build_targets+=(drvslam_cli)
+fi
 for entry in "${targets[@]}"; do build_targets+=("${entry%%:*}"); done
 [ "$train_vocabulary" = ON ] && build_targets+=(drvslam_default_vocab)
 # All of them as one target (drvslam_sanitizer_set): make takes targets named on one command
@@ -170,7 +193,7 @@ cmake -S . -B "$build" ${generator[@]+"${generator[@]}"} \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
   -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
   -DDRVSLAM_BUILD_BENCH=OFF -DDRVSLAM_BUILD_PYTHON=OFF \
-  -DDRVSLAM_BUILD_DEFAULT_VOCABULARY="$train_vocabulary" \
+  -DDRVSLAM_BUILD_DEFAULT_VOCABULARY="$train_vocabulary" -DDRVSLAM_TESTS_WITHOUT_CLI="$tests_without_cli" \
   -DDRVSLAM_SANITIZER_TARGETS="$(IFS=';'; echo "${build_targets[*]}")" >/dev/null
 
 # CPU seconds (user + system) of this script's finished child processes so far, in cpu_seconds
