@@ -22,7 +22,7 @@ def read_yaml(path):
             key, value = line.split(":", 1)
             value = value.strip()
             if value.startswith("["):
-                values[key] = [float(v) for v in value.strip("[]").split(",")]
+                values[key] = [float(v) for v in value.strip("[]").split(",") if v.strip()]
             else:
                 values[key] = value
     return values

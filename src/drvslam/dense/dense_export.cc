@@ -37,7 +37,11 @@ DenseExport ExportDenseMap(DenseMapper& mapper, const std::string& folder,
         "written in {:.0f} ms",
         o.occupied_leaves, o.free_leaves, resolution, o.bytes / (1024.0 * 1024.0), o.build_ms,
         o.write_ms);
-    if (grid.enabled) result.grid = WriteOccupancyGrid(rays, std::move(samples), grid, folder);
+    if (grid.enabled) {
+      FloorChoice floor;
+      result.grid = WriteOccupancyGrid(rays, std::move(samples), grid, folder, &floor);
+      result.floor = std::move(floor);
+    }
   } else if (grid.enabled) {
     spdlog::warn("Grid.enabled needs DenseMap.octomapResolution > 0; no map.yaml written");
   }

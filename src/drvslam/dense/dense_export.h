@@ -21,6 +21,7 @@ struct DenseExport {
   std::size_t points = 0;
   std::optional<DenseOctoMapExport> octomap;  // when written
   std::optional<GridExport> grid;             // map.yaml + map.pgm, when written
+  std::optional<FloorChoice> floor;           // the grid's floor search, when one was made
 };
 
 // Creates the folder when missing. With Grid.enabled and the OctoMap on, also writes the 2-D

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "drvslam/dense/dense_mapper.h"
+#include "drvslam/dense/floor_plane.h"
 #include "drvslam/dense/grid_options.h"
 #include "drvslam/dense/occupancy_grid.h"
 
@@ -17,18 +18,24 @@ struct GridExport {
   std::string yaml_path;
   std::string pgm_path;
   OccupancyGrid grid;
-  FloorPlane floor;
+  FloorChoice floor;  // the floor search: the chosen plane and the runners-up
   std::size_t occupied_cells = 0;
   std::size_t free_cells = 0;
 };
 
-// The grid of `samples` on the floor of `rays` (nothing when no floor is found: a warning is
-// logged and no file written). Throws Error naming a file that cannot be written.
-std::optional<GridExport> WriteOccupancyGrid(const DenseMapRays& rays, OccupancySamples samples,
-                                             const GridOptions& options, const std::string& folder);
+// The floor search of the grid's options on `rays` (the dense points, the keyframe cameras).
+FloorChoice ChooseGridFloor(const DenseMapRays& rays, const GridOptions& options);
 
-// The grid alone, without files: floor search, grid frame and projection.
+// The grid of `samples` on the floor of `rays` (nothing when no floor is found: a warning names
+// the reason and no file is written). `floor` (may be null) receives the floor search whether a
+// grid came of it or not. Throws Error naming a file that cannot be written.
+std::optional<GridExport> WriteOccupancyGrid(const DenseMapRays& rays, OccupancySamples samples,
+                                             const GridOptions& options, const std::string& folder,
+                                             FloorChoice* floor = nullptr);
+
+// The grid alone, without files or log lines: floor search, grid frame and projection.
 std::optional<GridExport> BuildOccupancyGrid(const DenseMapRays& rays, OccupancySamples samples,
-                                             const GridOptions& options);
+                                             const GridOptions& options,
+                                             FloorChoice* floor = nullptr);
 
 }  // namespace drvslam

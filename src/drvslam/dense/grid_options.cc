@@ -25,6 +25,12 @@ const OptionTable<GridOptions>& GridOptionTable() {
         .Real("floorMinDepthBelowCamera", &G::floor_min_depth_below_camera,
               Bounds::AtLeast(0).Note("metres"),
               "Only points this far below the mean camera centre may be floor.")
+        .Real("cameraHeight", &G::camera_height, Bounds::AtLeast(0).Note("metres"),
+              "Height of a camera fixed on a robot above the floor: the horizontal plane "
+              "nearest this far below the mean camera centre is the floor (none within "
+              "Grid.cameraHeightTolerance: no grid). 0: the lowest credible horizontal plane.")
+        .Real("cameraHeightTolerance", &G::camera_height_tolerance, Bounds::Above(0).Note("metres"),
+              "How far the floor may lie from Grid.cameraHeight below the mean camera centre.")
         .Rule(
             "maxObstacleHeight",
             [](const G& o) { return o.max_obstacle_height > o.min_obstacle_height; },

@@ -25,6 +25,13 @@ struct GridOptions {
   // Only points at least this far below the mean camera centre may be floor: table tops and
   // shelves within arm's reach of the camera are not.
   double floor_min_depth_below_camera = 0.3;
+  // A camera fixed on a robot: metres from the floor up to the camera (0: not given, the floor
+  // is the lowest credible horizontal plane). Given, the horizontal plane nearest this depth
+  // below the mean camera centre is the floor, if within floor_camera_height_tolerance.
+  double camera_height = 0.0;
+  // The mean camera centre wobbles with the robot's suspension, tracking and depth noise by a
+  // few centimetres; a seat or a low table lies tens of centimetres off.
+  double camera_height_tolerance = 0.1;
 
   // Throws Error naming the Grid.* key of a bad value.
   void Check() const;

@@ -62,10 +62,29 @@ double Number(const std::string& text, const std::string& path, const std::strin
   return value;
 }
 
+// The floor search's outcome as flat keys (lists of numbers, as the other keys).
+void WriteFloorKeys(const FloorChoice& choice, std::ostream& yaml) {
+  const FloorCandidate& floor = *choice.Floor();
+  const std::vector<FloorCandidate> others = choice.RunnersUp();
+  yaml << "# The floor's depth below the mean camera centre (m) and its dense points; the other\n"
+       << "# horizontal planes found below the cameras, most points first.\n"
+       << "drvslam_floor_depth_below_camera: " << floor.depth_below_camera << "\n"
+       << "drvslam_floor_inliers: " << floor.plane.inliers << "\n"
+       << "drvslam_floor_runner_up_depths: [";
+  for (std::size_t i = 0; i < others.size(); ++i) {
+    yaml << (i ? ", " : "") << others[i].depth_below_camera;
+  }
+  yaml << "]\ndrvslam_floor_runner_up_inliers: [";
+  for (std::size_t i = 0; i < others.size(); ++i) {
+    yaml << (i ? ", " : "") << others[i].plane.inliers;
+  }
+  yaml << "]\n";
+}
+
 }  // namespace
 
 void WriteMapServerFiles(const OccupancyGrid& grid, const std::string& yaml_path,
-                         const std::string& pgm_path) {
+                         const std::string& pgm_path, const FloorChoice* floor) {
   std::ofstream pgm(pgm_path, std::ios::binary);
   if (!pgm) throw Error(pgm_path + ": cannot open for writing");
   pgm << "P5\n# drvslam occupancy grid\n" << grid.width << " " << grid.height << "\n255\n";
@@ -90,6 +109,7 @@ void WriteMapServerFiles(const OccupancyGrid& grid, const std::string& yaml_path
        << "drvslam_T_world_grid: [";
   for (int i = 0; i < 16; ++i) yaml << (i ? ", " : "") << grid.T_world_grid(i / 4, i % 4);
   yaml << "]\n";
+  if (floor && floor->Floor()) WriteFloorKeys(*floor, yaml);
   if (!yaml) throw Error(yaml_path + ": write failed");
 }
 

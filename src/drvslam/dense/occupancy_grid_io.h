@@ -2,7 +2,9 @@
 // top row = highest y) and its YAML, which Nav2's map server loads:
 //   ros2 run nav2_map_server map_server --ros-args -p yaml_filename:=map.yaml
 // The YAML also carries drvslam_T_world_grid (row-major 4x4, grid frame in the trajectory's world
-// frame); map_server ignores keys it does not know.
+// frame) and, given the floor search, the floor's depth below the mean camera centre and its
+// points, and the other horizontal planes' (drvslam_floor_*); map_server ignores keys it does not
+// know.
 #pragma once
 
 #include <string>
@@ -19,9 +21,10 @@ constexpr unsigned char kPgmFree = 254;
 constexpr unsigned char kPgmUnknown = 205;
 
 // Writes pgm_path and yaml_path (whose `image` names the PGM by its file name, so both must share
-// a folder). Throws Error naming the file that cannot be written.
+// a folder); the drvslam_floor_* keys when `floor` holds a chosen floor. Throws Error naming the
+// file that cannot be written.
 void WriteMapServerFiles(const OccupancyGrid& grid, const std::string& yaml_path,
-                         const std::string& pgm_path);
+                         const std::string& pgm_path, const FloorChoice* floor = nullptr);
 
 // Reads a PGM written by WriteMapServerFiles back into cells (row 0 at the lowest y); width and
 // height from the file. Throws Error naming the file and what is wrong with it.

@@ -15,6 +15,7 @@
 #include "drvslam/core/timing.h"
 #include "drvslam/dense/dense_export.h"
 #include "drvslam/dense/dense_stats_json.h"
+#include "drvslam/dense/grid_stats_json.h"
 #include "drvslam/dense/point_cloud_io.h"
 #include "drvslam/dynamic/dynamic_stats_json.h"
 #include "drvslam/io/frame_rejections.h"
@@ -124,7 +125,11 @@ void WriteOutputs(System& system, const fs::path& out_dir, Clock::time_point sta
     summary->map_bytes = static_cast<std::size_t>(fs::file_size(save_map));
   }
   // Assembled with the final keyframe poses; stats then count the exported points.
-  if (DenseMapper* dense = system.Dense()) ExportDenseMap(*dense, out_dir.string(), grid);
+  if (DenseMapper* dense = system.Dense()) {
+    DenseExport exported = ExportDenseMap(*dense, out_dir.string(), grid);
+    summary->grid_floor = std::move(exported.floor);
+    summary->grid = std::move(exported.grid);
+  }
   summary->stats = system.Stats();
   summary->fps = summary->wall_s > 0.0 ? summary->stats.frames / summary->wall_s : 0.0;
   summary->camera_trajectory_path =
@@ -438,6 +443,9 @@ void WriteStatsJson(const std::string& path, const RunSummary& summary) {
     json["dynamic"]["motion_states"] = MotionStateScoresJson(*summary.motion_states);
   }
   if (s.dense) json["dense"] = DenseStatsJson(*s.dense);
+  if (summary.grid_floor) {
+    json["grid"] = GridStatsJson(*summary.grid_floor, summary.grid ? &*summary.grid : nullptr);
+  }
   if (s.loop) {
     const LoopClosingStats& l = *s.loop;
     nlohmann::json loops = nlohmann::json::array();

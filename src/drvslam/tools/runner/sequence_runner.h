@@ -14,6 +14,7 @@
 #include "drvslam/core/settings.h"
 #include "drvslam/core/thread_usage.h"
 #include "drvslam/dense/dense_point.h"
+#include "drvslam/dense/grid_export.h"
 #include "drvslam/dense/grid_options.h"
 #include "drvslam/io/frame_rejections.h"
 #include "drvslam/io/trajectory_formats.h"
@@ -147,6 +148,9 @@ struct RunSummary {
   std::string map_saved_to;
   std::size_t map_bytes = 0;
   double map_save_ms = 0.0;
+  // The occupancy grid's floor search (when the grid was asked for) and the grid (when written).
+  std::optional<FloorChoice> grid_floor;
+  std::optional<GridExport> grid;
   // Motion states scored against the dataset's ground truth (synthetic sequences only).
   std::optional<MotionStateScores> motion_states;
   // What each thread used from the start of the frame loop until the last frame was tracked
@@ -175,7 +179,8 @@ RunSummary RunSequence(const RunOptions& options,
 // stages.{name}.{median_ms,p95_ms,mean_ms,max_ms,count}, settings, mapping.{counters of
 // LocalMappingStats}, dynamic_setup, and with dynamic handling dynamic.{DynamicStatsJson,
 // motion_states} and segmentation.{SegmentationStatsJson}, and with dense mapping
-// dense.{DenseStatsJson}, and with loop closing loop.{keyframes_processed, detections,
+// dense.{DenseStatsJson}, and with the grid's floor searched grid.{GridStatsJson}, and with loop
+// closing loop.{keyframes_processed, detections,
 // rejected, corrections, global_bas, global_bas_interrupted, detection_ms, correction_ms,
 // global_ba_ms, loops[{keyframe, loop_keyframe, timestamp, matches, correction_m,
 // correction_deg}]}), and map_file.{loaded (path or null), loaded_keyframes, loaded_points,
