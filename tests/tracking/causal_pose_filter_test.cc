@@ -1,9 +1,10 @@
 // CausalPoseFilter on a made-up hand-held path seen through correlated per-frame pose noise of
 // known covariance (the sideways shift and the turn that look alike): the causal estimate is
 // smoother and nearer the path than the measurements, its velocity follows the path's, its
-// covariance is consistent (mean NEES near its 6 degrees of freedom), also when the given
-// covariance is four times too confident (the inflation measures that); and it is causal: a
-// frame's estimate does not change with the frames after it.
+// covariance is consistent (mean NEES near its 6 degrees of freedom, with errors of the map shared
+// by runs of frames as well as per-frame noise), also when the given covariance is four times too
+// confident (the inflation measures that); and it is causal: a frame's estimate does not change
+// with the frames after it.
 #include "drvslam/tracking/causal_pose_filter.h"
 
 #include <gtest/gtest.h>
@@ -72,19 +73,28 @@ struct Measurement {
 };
 
 // The path measured with CameraFrameNoise; `stated` is the covariance the filter is told, as a
-// multiple of the true one.
-std::vector<Measurement> Measure(double stated, unsigned seed = 11) {
+// multiple of the true one. With `with_map_error`, every run of 15 frames (a keyframe every half
+// second) also shares an error of the map's, drawn from CausalPoseFilter::kMapShare times the
+// noise: the error structure the filter's pose covariance assumes.
+std::vector<Measurement> Measure(double stated, bool with_map_error = false, unsigned seed = 11) {
   std::mt19937 random(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   const Matrix6d noise = CameraFrameNoise();
   const Eigen::Matrix<double, 6, 6> root = noise.llt().matrixL();
+  const auto draw = [&] {
+    Eigen::Matrix<double, 6, 1> d;
+    for (int k = 0; k < 6; ++k) d[k] = normal(random);
+    return Eigen::Matrix<double, 6, 1>(root * d);
+  };
   std::vector<Measurement> out;
+  Eigen::Matrix<double, 6, 1> map_error = Eigen::Matrix<double, 6, 1>::Zero();
   for (int i = 0; i < kFrames; ++i) {
     const double t = i * kDt;
     const SE3 truth = PathPose(t);
-    Eigen::Matrix<double, 6, 1> draw;
-    for (int k = 0; k < 6; ++k) draw[k] = normal(random);
-    const Eigen::Matrix<double, 6, 1> n = root * draw;
+    if (with_map_error && i % 15 == 0) {
+      map_error = std::sqrt(CausalPoseFilter::kMapShare) * draw();
+    }
+    const Eigen::Matrix<double, 6, 1> n = draw() + map_error;
     const Eigen::Matrix3d rotation = truth.Rotation();
     Matrix6d to_world = Matrix6d::Identity();
     to_world.topLeftCorner<3, 3>() = rotation;
@@ -175,14 +185,14 @@ TEST(CausalPoseFilterTest, VelocityFollowsThePath) {
 }
 
 TEST(CausalPoseFilterTest, CovarianceIsConsistent) {
-  const std::vector<CausalPose> estimates = Filtered(Measure(1.0));
+  const std::vector<CausalPose> estimates = Filtered(Measure(1.0, /*with_map_error=*/true));
   const double nees = MeanPoseNees(estimates, kWarmUp);
   EXPECT_GT(nees, 0.5 * 6);
   EXPECT_LT(nees, 2.0 * 6);
 }
 
 TEST(CausalPoseFilterTest, InflationCorrectsAnOverconfidentSolve) {
-  const std::vector<Measurement> measured = Measure(0.25);
+  const std::vector<Measurement> measured = Measure(0.25, /*with_map_error=*/true);
   CausalPoseFilter filter(Options());
   std::vector<CausalPose> estimates;
   for (const Measurement& m : measured) {

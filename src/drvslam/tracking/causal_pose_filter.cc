@@ -86,6 +86,8 @@ CausalPose CausalPoseFilter::Update(double timestamp, const SE3& measured_T_wc,
     Forget();
   }
   MeasureInflation(measured_T_wc, covariance, timestamp);
+  if (HasInformation(covariance) || !started_)
+    map_covariance_ = kMapShare * inflation_ * covariance;
   if (!started_) {
     Start(timestamp, measured_T_wc, covariance);
     return Estimate();
@@ -235,7 +237,8 @@ CausalPose CausalPoseFilter::Estimate() const {
   pose.angular_velocity = angular_velocity_;
   Matrix6d to_world = Matrix6d::Identity();
   to_world.bottomRightCorner<3, 3>() = rotation_;
-  pose.pose_covariance = to_world * covariance_.topLeftCorner<6, 6>() * to_world.transpose();
+  pose.pose_covariance =
+      to_world * (covariance_.topLeftCorner<6, 6>() + map_covariance_) * to_world.transpose();
   Matrix6d to_camera = Matrix6d::Identity();
   to_camera.topLeftCorner<3, 3>() = rotation_.transpose();
   pose.twist_covariance = to_camera * covariance_.bottomRightCorner<6, 6>() * to_camera.transpose();

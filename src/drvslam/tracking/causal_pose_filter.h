@@ -14,6 +14,13 @@
 // differences, whitened by s times the solve's covariance plus what the motion prior's
 // acceleration adds to a second difference, have the median of a chi-square with 6 degrees of
 // freedom (a median, so a few wild frames do not decide it); never below 1.
+//
+// Second differences see only the noise that changes from frame to frame. The map's points carry
+// an error of their own that consecutive frames share: each was made from one keyframe's
+// observation (about one frame's noise) by a keyframe whose pose had about one frame's error.
+// The filter does not average that away, so the pose covariance it reports adds kMapShare (2)
+// times the inflated solve covariance of the last frame to its state's; the twist covariance
+// does not, as a shared offset does not move the velocity.
 #pragma once
 
 #include <Eigen/Core>
@@ -69,6 +76,9 @@ class CausalPoseFilter {
   // The inflation of the solve's covariance now in use (>= 1).
   double Inflation() const { return inflation_; }
 
+  // The map's share of a pose's error, in units of the frame's own (inflated) solve covariance.
+  static constexpr double kMapShare = 2.0;
+
  private:
   using Matrix12d = Eigen::Matrix<double, 12, 12>;
   void Start(double timestamp, const SE3& T_wc, const Matrix6d& covariance);
@@ -87,6 +97,7 @@ class CausalPoseFilter {
   Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();          // world
   Eigen::Vector3d angular_velocity_ = Eigen::Vector3d::Zero();  // camera
   Matrix12d covariance_ = Matrix12d::Zero();
+  Matrix6d map_covariance_ = Matrix6d::Zero();  // kMapShare x the last inflated solve covariance
   int rejected_in_a_row_ = 0;
 
   // The last tracked poses (for the inflation), cleared with Forget and Rebase.
