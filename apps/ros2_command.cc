@@ -40,8 +40,8 @@ void PrintSummary(const ros2::Ros2NodeSummary& summary, const std::string& out_d
   std::printf("keyframes:   %zu, map points %zu\n", s.keyframes, s.map_points);
   if (summary.pairs_tracked > 0) {
     std::printf(
-        "wrote:       %s/{CameraTrajectory.txt,TrackedCameraTrajectory.txt,KeyFrameTrajectory.txt,"
-        "stats.json}%s\n",
+        "wrote:       %s/{CameraTrajectory.txt,TrackedCameraTrajectory.txt,"
+        "OnlineCameraTrajectory.txt,KeyFrameTrajectory.txt,stats.json}%s\n",
         out_dir.c_str(), s.dense ? " and the dense map, map.yaml, map.pgm" : "");
   }
 }
@@ -85,6 +85,10 @@ const bool kRos2CommandRegistered = RegisterCommand("ros2", [](CLI::App& root) {
   command->add_option("--dense-map-topic", topics.dense_map)->capture_default_str();
   command->add_option("--moving-mask-topic", topics.moving_mask)->capture_default_str();
   command->add_option("--grid-topic", topics.grid)->capture_default_str();
+  command
+      ->add_option("--tf-topic", topics.tf,
+                   "the camera pose's transform; another name keeps it out of the /tf tree")
+      ->capture_default_str();
   command->add_option("--map-frame", options->map_frame, "frame of poses and clouds")
       ->capture_default_str();
   command->add_option("--camera-frame", options->camera_frame, "child frame of the camera pose")

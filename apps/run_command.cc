@@ -46,7 +46,8 @@ int ParseViewerPort(const std::string& text) {
 // The trajectory files a run writes in `format` (WriteRunTrajectories), comma-separated.
 std::string TrajectoryFileNames(TrajectoryFormat format) {
   std::string names;
-  for (const char* base : {"CameraTrajectory", "TrackedCameraTrajectory", "KeyFrameTrajectory"}) {
+  for (const char* base : {"CameraTrajectory", "TrackedCameraTrajectory", "OnlineCameraTrajectory",
+                           "KeyFrameTrajectory"}) {
     const std::string file = TrajectoryFilePath(base, format);
     names += (names.empty() ? "" : ",") + file;
     if (format == TrajectoryFormat::kKitti) names += "," + KittiTimesPath(file);

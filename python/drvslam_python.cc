@@ -104,6 +104,12 @@ struct PyTrackResult {
   bool pose_valid = false;
   Eigen::Matrix4d T_cw = Eigen::Matrix4d::Identity();
   Eigen::Matrix4d T_wc = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d T_cw_tracked = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d T_wc_tracked = Eigen::Matrix4d::Identity();
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 6, 6> pose_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 6> twist_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   int inliers = 0;
   std::optional<long> keyframe_id;  // set when the frame became a keyframe
 };
@@ -188,6 +194,12 @@ class PySystem {
     out.pose_valid = result.pose_valid;
     out.T_cw = result.T_cw.Matrix();
     out.T_wc = result.T_wc.Matrix();
+    out.T_cw_tracked = result.T_cw_tracked.Matrix();
+    out.T_wc_tracked = result.T_wc_tracked.Matrix();
+    out.linear_velocity = result.linear_velocity;
+    out.angular_velocity = result.angular_velocity;
+    out.pose_covariance = result.pose_covariance;
+    out.twist_covariance = result.twist_covariance;
     out.inliers = result.inliers;
     if (result.new_keyframe) out.keyframe_id = result.new_keyframe->Id();
     return out;
@@ -317,8 +329,24 @@ PYBIND11_MODULE(drvslam, m) {
       .def_readonly("pose_valid", &PyTrackResult::pose_valid,
                     "True when the frame was tracked (T_cw, T_wc hold its pose); else both are "
                     "the identity")
-      .def_readonly("T_cw", &PyTrackResult::T_cw, "4x4 float64, world -> camera")
-      .def_readonly("T_wc", &PyTrackResult::T_wc, "4x4 float64, camera -> world (the pose)")
+      .def_readonly("T_cw", &PyTrackResult::T_cw,
+                    "4x4 float64, world -> camera: the causal pose (this frame and the ones "
+                    "before it, with a constant-velocity motion model)")
+      .def_readonly("T_wc", &PyTrackResult::T_wc,
+                    "4x4 float64, camera -> world: the causal pose (the one to act on)")
+      .def_readonly("T_cw_tracked", &PyTrackResult::T_cw_tracked,
+                    "4x4 float64, world -> camera, as tracked (this frame's own solve)")
+      .def_readonly("T_wc_tracked", &PyTrackResult::T_wc_tracked,
+                    "4x4 float64, camera -> world, as tracked")
+      .def_readonly("linear_velocity", &PyTrackResult::linear_velocity,
+                    "(3,) float64, m/s, in the camera frame (x right, y down, z forward)")
+      .def_readonly("angular_velocity", &PyTrackResult::angular_velocity,
+                    "(3,) float64, rad/s, in the camera frame")
+      .def_readonly("pose_covariance", &PyTrackResult::pose_covariance,
+                    "6x6 float64 over (x, y, z, rotation about the world's x, y, z) of T_wc, "
+                    "world frame (nav_msgs/Odometry's pose covariance)")
+      .def_readonly("twist_covariance", &PyTrackResult::twist_covariance,
+                    "6x6 float64 over (linear_velocity, angular_velocity), camera frame")
       .def_readonly("inliers", &PyTrackResult::inliers, "map points the pose was estimated from")
       .def_readonly("keyframe_id", &PyTrackResult::keyframe_id,
                     "the new keyframe's id when this frame became one, else None")
@@ -408,6 +436,14 @@ PYBIND11_MODULE(drvslam, m) {
           },
           "(timestamps, poses) as trajectory(), never smoothed.")
       .def(
+          "online_trajectory",
+          [](PySystem& self) {
+            return ToArrays(
+                self.Call([](System& system) { return system.OnlineCameraTrajectory(); }));
+          },
+          "(timestamps, poses) of every tracked frame's causal pose, T_wc as track_rgbd "
+          "returned it (never corrected afterwards).")
+      .def(
           "keyframe_trajectory",
           [](PySystem& self) {
             return ToArrays(self.Call([](System& system) { return system.KeyFrameTrajectory(); }));
@@ -415,7 +451,8 @@ PYBIND11_MODULE(drvslam, m) {
           "(timestamps, poses) of the keyframes, as trajectory().")
       .def("write_trajectories", &PySystem::WriteTrajectories, py::arg("out_dir"),
            py::arg("format") = "tum",
-           "Writes OUT_DIR/CameraTrajectory, TrackedCameraTrajectory and KeyFrameTrajectory in "
+           "Writes OUT_DIR/CameraTrajectory, TrackedCameraTrajectory, OnlineCameraTrajectory and "
+           "KeyFrameTrajectory in "
            "format 'tum' (.txt), "
            "'kitti' (.txt + _times.txt) or 'euroc' (.csv), byte for byte as `drvslam run "
            "--trajectory-format` writes them; returns the camera trajectory's path.")

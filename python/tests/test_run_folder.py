@@ -20,7 +20,7 @@ def test_example_matches_the_cli_byte_for_byte(cli, source_dir, sequence, tmp_pa
     assert "frames: 60" in done.stdout, done.stdout
     extension = ".csv" if trajectory_format == "euroc" else ".txt"
     for name in ("CameraTrajectory" + extension, "TrackedCameraTrajectory" + extension,
-                 "KeyFrameTrajectory" + extension):
+                 "OnlineCameraTrajectory" + extension, "KeyFrameTrajectory" + extension):
         cli_bytes = (tmp_path / "cli" / name).read_bytes()
         python_bytes = (tmp_path / "python" / name).read_bytes()
         assert len(cli_bytes.splitlines()) > 5, name  # keyframes too, not just headers

@@ -47,7 +47,24 @@ def test_track_rgbd_returns_pose_and_state(sequence):
         # Against the ground truth moved into the map's frame (frame 0 at the origin).
         truth = origin @ gt_poses[np.searchsorted(gt_stamps, frame[0])]
         assert np.linalg.norm(result.T_wc[:3, 3] - truth[:3, 3]) < 0.02, k
+        # T_wc is the causal pose; the pose as tracked is beside it, a few millimetres away.
+        np.testing.assert_allclose(result.T_cw_tracked @ result.T_wc_tracked, np.eye(4),
+                                   atol=1e-9)
+        assert np.linalg.norm(result.T_wc[:3, 3] - result.T_wc_tracked[:3, 3]) < 0.01, k
+        assert result.linear_velocity.shape == (3,) and result.angular_velocity.shape == (3,)
+        assert result.pose_covariance.shape == (6, 6) and result.twist_covariance.shape == (6, 6)
+        if k > 0:
+            # Both covariances are symmetric and positive definite after the first frame.
+            for covariance in (result.pose_covariance, result.twist_covariance):
+                np.testing.assert_allclose(covariance, covariance.T, atol=1e-15)
+                assert np.linalg.eigvalsh(covariance).min() > 0, k
+    # The camera moves through the sequence: the velocity says so (centimetres per second).
+    speeds = [np.linalg.norm(result.linear_velocity) for result in results[TRACKED // 2:]]
+    assert np.median(speeds) > 0.01, speeds
     system.shutdown()
+    online_stamps, online_poses = system.online_trajectory()
+    np.testing.assert_array_equal(online_stamps, [frame[0] for frame in frames])
+    np.testing.assert_array_equal(online_poses[-1], results[-1].T_wc)
 
     stamps, poses = system.trajectory()
     assert stamps.shape == (TRACKED,) and poses.shape == (TRACKED, 4, 4)

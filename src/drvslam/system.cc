@@ -31,6 +31,7 @@
 #include "drvslam/mapping/local_mapper.h"
 #include "drvslam/system_options.h"
 #include "drvslam/system_stats.h"
+#include "drvslam/tracking/causal_pose_filter.h"
 #include "drvslam/tracking/feature_budget.h"
 #include "drvslam/tracking/frame_factory.h"
 #include "drvslam/tracking/tracker.h"
@@ -100,6 +101,9 @@ struct System::Impl {
   void HandOverToDense(const TrackingResult& result, const cv::Mat& bgr, const cv::Mat& depth,
                        double timestamp);
   void Shutdown();
+  // The frame's causal pose, velocity and covariances into `track` (its pose as tracked is
+  // kept beside them); `epoch`: the map's correction epoch the frame was tracked in.
+  void EstimateCausalPose(TrackResult* track, LocalizationQuality quality, long epoch);
   SystemStats Stats() const;
   // Hands the finished frame to the observer and records its time ("observer").
   void Observe(const TrackResult& track, const cv::Mat& bgr,
@@ -138,9 +142,24 @@ struct System::Impl {
   std::size_t map_loaded_dense_points = 0;
   double map_load_ms = 0.0;
   long first_verified_frame = -1;
+  CausalPoseFilter causal_pose;
+  long causal_epoch = 0;  // the map's correction epoch of the last causal pose
+  LocalizationQuality previous_quality = LocalizationQuality::kLost;
+  mutable std::mutex online_mutex;  // tracking appends, OnlineCameraTrajectory reads
+  Trajectory online_trajectory;
+  std::vector<StampedVelocity> online_velocities;
 };
 
 namespace {
+
+// The causal filter's motion prior is the smoother's, at the camera's frame rate.
+CausalPoseOptions CausalOptions(const TrackerOptions& tracker_options, double fps) {
+  CausalPoseOptions options;
+  options.acceleration = tracker_options.smoothing_acceleration;
+  options.angular_acceleration = tracker_options.smoothing_angular_acceleration;
+  if (fps > 0) options.frame_interval_s = 1.0 / fps;
+  return options;
+}
 
 // A sequential run keeps every stage on the one calling thread, the extractor's levels too.
 Settings ExtractionSettings(Settings settings, bool sequential) {
@@ -157,7 +176,8 @@ System::Impl::Impl(const Settings& settings_in, const TrackerOptions& tracker_op
       options(options_in),
       frame_factory(ExtractionSettings(settings_in, options_in.sequential)),
       tracker(map, tracker_options_in, settings_in.camera.fps),
-      local_mapper(map, options_in.mapping, options_in.sequential, &timings) {
+      local_mapper(map, options_in.mapping, options_in.sequential, &timings),
+      causal_pose(CausalOptions(tracker_options_in, settings_in.camera.fps)) {
   // The one place the process's OpenCV thread pool is set (core/thread_budget.h).
   ApplyOpenCvThreadBudget(ChooseOpenCvThreads(
       options.dynamic ? options.dynamic->segmentation.dnn_threads : 0, options.sequential));
@@ -312,6 +332,7 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   std::shared_ptr<const FrameFeatures> observed_features = observer ? frame.FeaturesPtr() : nullptr;
   const Stopwatch tracking;
   TrackingResult result;
+  long epoch = 0;
   {
     // Local mapping writes bundle-adjusted poses under this lock, so a frame is tracked
     // against one consistent state of the map.
@@ -321,6 +342,7 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
     // a crowd seen through carried masks) is tracked but not mapped, or its movers would stay
     // in the map.
     tracker.VetoKeyFrame(dynamic && dynamic->MoversUnchecked());
+    epoch = map.CorrectionEpoch();
     result = tracker.Track(std::move(frame), depth);
     // Map points matched on still potentially-moving objects are filed, to be culled when the
     // object starts moving.
@@ -337,6 +359,9 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
     }
   }
   timings.Record("tracking", tracking.ElapsedMs());
+  const Stopwatch causal;
+  EstimateCausalPose(&track, result.quality, epoch);
+  timings.Record("causal_pose", causal.ElapsedMs());
   // A loss asked for a new map: it waits for local mapping's keyframe in flight, which may need
   // the update lock, so it runs after the lock is released.
   tracker.ApplyPendingReset();
@@ -358,6 +383,38 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   track.new_keyframe = std::move(result.new_keyframe);
   if (observer) Observe(track, bgr, std::move(observed_features), total_ms_frame);
   return track;
+}
+
+void System::Impl::EstimateCausalPose(TrackResult* track, LocalizationQuality quality, long epoch) {
+  const LocalizationQuality previous = previous_quality;
+  previous_quality = track->pose_valid ? quality : LocalizationQuality::kLost;
+  if (!track->pose_valid) {
+    causal_pose.Forget();
+    return;
+  }
+  track->T_cw_tracked = track->T_cw;
+  track->T_wc_tracked = track->T_wc;
+  // No motion is known across a loss, nor into a pose just found again by relocalization.
+  if (previous == LocalizationQuality::kLost ||
+      (quality == LocalizationQuality::kTentative && previous != quality)) {
+    causal_pose.Forget();
+  } else if (epoch != causal_epoch) {
+    causal_pose.Rebase();
+  }
+  causal_epoch = epoch;
+  const Matrix6d covariance =
+      MeasurementCovariance(tracker.LastPoseInformation(), track->T_wc_tracked);
+  const CausalPose estimate = causal_pose.Update(track->timestamp, track->T_wc_tracked, covariance);
+  track->T_wc = estimate.T_wc;
+  track->T_cw = estimate.T_wc.Inverse();
+  track->linear_velocity = estimate.linear_velocity;
+  track->angular_velocity = estimate.angular_velocity;
+  track->pose_covariance = estimate.pose_covariance;
+  track->twist_covariance = estimate.twist_covariance;
+  std::lock_guard<std::mutex> lock(online_mutex);
+  online_trajectory.push_back({track->timestamp, estimate.T_wc});
+  online_velocities.push_back(
+      {track->timestamp, estimate.linear_velocity, estimate.angular_velocity});
 }
 
 void System::Impl::Observe(const TrackResult& track, const cv::Mat& bgr,
@@ -497,6 +554,16 @@ Trajectory System::CameraTrajectory() const {
 
 Trajectory System::TrackedCameraTrajectory() const {
   return impl_->tracker.Recorder().CameraTrajectory();
+}
+
+Trajectory System::OnlineCameraTrajectory() const {
+  std::lock_guard<std::mutex> lock(impl_->online_mutex);
+  return impl_->online_trajectory;
+}
+
+std::vector<StampedVelocity> System::OnlineCameraVelocities() const {
+  std::lock_guard<std::mutex> lock(impl_->online_mutex);
+  return impl_->online_velocities;
 }
 
 Trajectory System::KeyFrameTrajectory() const {

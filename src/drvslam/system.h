@@ -46,8 +46,23 @@ struct TrackResult {
   // adjustment and loop closing later refine the poses CameraTrajectory() reports. False (lost,
   // or not initialized yet): both are the identity.
   bool pose_valid = false;
+  // The pose a robot acts on: the causal estimate (tracking/causal_pose_filter.h) from this
+  // frame's tracked pose and the frames before it, with a constant-velocity motion model; no
+  // later frame enters it, so it comes with the frame.
   SE3 T_cw;  // world -> camera
   SE3 T_wc;  // camera -> world: the camera's pose
+  // The pose as tracked (this frame's own solve, unfiltered).
+  SE3 T_cw_tracked;
+  SE3 T_wc_tracked;
+  // The camera's velocity in its own frame (x right, y down, z forward): metres per second and
+  // radians per second. Zero when pose_valid is false.
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  // Covariance of T_wc over (x, y, z, rotation about the world's x, y, z), world frame, metres
+  // and radians, as nav_msgs/Odometry's pose covariance; and of (linear_velocity,
+  // angular_velocity), camera frame, as its twist covariance. Zero when pose_valid is false.
+  Eigen::Matrix<double, 6, 6> pose_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 6> twist_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   // How far the pose may be trusted (tracking_state.h; docs/maps-and-localization.md): kVerified
   // poses may be acted on; kTentative ones were just found again after a loss (relocalization)
   // and are not confirmed yet: in a scene with repeated structure they may be wrong by a whole
@@ -56,6 +71,13 @@ struct TrackResult {
   // Map points the pose was estimated from (after initialization: the new map's points).
   int inliers = 0;
   std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe
+};
+
+// The causal velocity TrackRGBD returned for one frame, in the camera frame.
+struct StampedVelocity {
+  double timestamp = 0.0;
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // m/s
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // rad/s
 };
 
 class System {
@@ -91,6 +113,11 @@ class System {
   Trajectory CameraTrajectory() const;
   // The same poses as tracked, never smoothed.
   Trajectory TrackedCameraTrajectory() const;
+  // Every tracked frame's causal pose (TrackResult::T_wc) as TrackRGBD returned it: in the map
+  // as it was then, never corrected afterwards.
+  Trajectory OnlineCameraTrajectory() const;
+  // The same frames' velocities (TrackResult::linear_velocity, angular_velocity).
+  std::vector<StampedVelocity> OnlineCameraVelocities() const;
   Trajectory KeyFrameTrajectory() const;
   SystemStats Stats() const;
   const Map& GetMap() const;

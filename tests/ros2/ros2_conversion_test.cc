@@ -183,10 +183,19 @@ TEST(RosDomainIdTest, ReadsTheVariableAsRos2Does) {
   ASSERT_EQ(unsetenv("ROS_DOMAIN_ID"), 0);
 }
 
-TEST(OutputMessagesTest, PoseMessagesCarryThePoseStampAndFrames) {
-  const SE3 T_wc(Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitY())),
-                 Eigen::Vector3d(1, 2, 3));
-  const PoseMessages messages(T_wc, 5 * 1000000000LL + 7, "map", "cam");
+TEST(OutputMessagesTest, PoseMessagesCarryThePoseTwistCovariancesStampAndFrames) {
+  OdometryEstimate estimate;
+  estimate.T_wc = SE3(Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitY())),
+                      Eigen::Vector3d(1, 2, 3));
+  estimate.linear_velocity = Eigen::Vector3d(0.1, -0.2, 0.3);
+  estimate.angular_velocity = Eigen::Vector3d(-0.4, 0.5, 0.6);
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      estimate.pose_covariance(r, c) = 10 * r + c;
+      estimate.twist_covariance(r, c) = 100 + 10 * r + c;
+    }
+  }
+  const PoseMessages messages(estimate, 5 * 1000000000LL + 7, "map", "cam");
   const auto& odometry = messages.Odometry();
   EXPECT_STREQ(odometry.header.frame_id, "map");
   EXPECT_STREQ(odometry.child_frame_id, "cam");
@@ -195,6 +204,11 @@ TEST(OutputMessagesTest, PoseMessagesCarryThePoseStampAndFrames) {
   EXPECT_DOUBLE_EQ(odometry.pose.pose.position.z, 3.0);
   EXPECT_NEAR(odometry.pose.pose.orientation.y, std::sin(0.25), 1e-12);
   EXPECT_NEAR(odometry.pose.pose.orientation.w, std::cos(0.25), 1e-12);
+  // The twist in the child frame as given; both covariances row-major.
+  EXPECT_DOUBLE_EQ(odometry.twist.twist.linear.y, -0.2);
+  EXPECT_DOUBLE_EQ(odometry.twist.twist.angular.z, 0.6);
+  EXPECT_DOUBLE_EQ(odometry.pose.covariance[6 * 2 + 4], 24.0);
+  EXPECT_DOUBLE_EQ(odometry.twist.covariance[6 * 5 + 1], 151.0);
   const auto& tf = messages.Transforms();
   ASSERT_EQ(tf.transforms._length, 1u);
   EXPECT_STREQ(tf.transforms._buffer[0].child_frame_id, "cam");

@@ -12,8 +12,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -37,6 +39,13 @@ namespace fs = std::filesystem;
 using SystemClock = std::chrono::system_clock;
 
 constexpr std::size_t kFrames = 240;  // 8 s at 30 Hz
+// The odometry's twist agrees with the ground truth's central differences within these RMSE
+// bounds (the synthetic camera moves at about 0.2 m/s rms; a difference of two poses that
+// scatter by a millimetre would be off by 0.05 m/s). Frames before kTwistWarmUpFrames are left
+// out: the filter starts with the velocity unknown.
+constexpr double kMaxTwistLinearRmse = 0.05;  // m/s
+constexpr double kMaxTwistAngularRmse = 0.1;  // rad/s
+constexpr std::size_t kTwistWarmUpFrames = 30;
 // A domain of its own (ros2_msgs_test uses 171), loopback only, no multicast: without
 // multicast, participants find each other by unicast to the peer 127.0.0.1, on the ports of
 // participant indices 0..MaxAutoParticipantIndex (each process takes the first free one).
@@ -167,6 +176,9 @@ TEST(Ros2NodeTest, TracksImageTopicsAndPublishesPosesTfAndGrid) {
 
   std::map<std::int64_t, double> sequence_time_of_stamp;
   std::map<std::int64_t, SE3> poses;  // by stamp
+  // The twist (linear, angular; child frame) by stamp, and whether each covariance was nonzero.
+  std::map<std::int64_t, std::pair<Eigen::Vector3d, Eigen::Vector3d>> twists;
+  std::size_t with_pose_covariance = 0, with_twist_covariance = 0;
   std::vector<double> latency_ms;
   std::size_t tf_messages = 0;
   std::size_t grids = 0;
@@ -183,6 +195,17 @@ TEST(Ros2NodeTest, TracksImageTopicsAndPublishesPosesTfAndGrid) {
           Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z),
           Eigen::Vector3d(p.position.x, p.position.y, p.position.z));
       odometry_frames = std::string(message.header.frame_id) + " -> " + message.child_frame_id;
+      const auto& twist = message.twist.twist;
+      twists[stamp] = {Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z),
+                       Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z)};
+      const auto positive_diagonal = [](const double* covariance) {
+        for (int i = 0; i < 6; ++i) {
+          if (!(covariance[7 * i] > 0.0)) return false;
+        }
+        return true;
+      };
+      with_pose_covariance += positive_diagonal(message.pose.covariance);
+      with_twist_covariance += positive_diagonal(message.twist.covariance);
     });
     tf_messages += tf.Take([](const tf2_msgs_msg_dds__TFMessage_&) {});
     grid.Take([&](const nav_msgs_msg_dds__OccupancyGrid_& message) {
@@ -293,6 +316,43 @@ TEST(Ros2NodeTest, TracksImageTopicsAndPublishesPosesTfAndGrid) {
   EXPECT_EQ(odometry_frames, "map -> drvslam_camera");
   EXPECT_LT(ate.errors.rmse, 0.02);
   EXPECT_LT(written_ate.errors.rmse, 0.02);
+
+  // The twist against the ground truth's central differences, in the camera frame, over the
+  // received frames after the first second (the filter learns the velocity from the first).
+  const Trajectory& truth = dataset.GroundTruth();
+  double linear_sum = 0.0, angular_sum = 0.0, speed_sum = 0.0;
+  std::size_t compared = 0;
+  for (const auto& [stamp, twist] : twists) {
+    const double t = sequence_time(stamp * 1e-9);
+    const auto at = std::lower_bound(
+        truth.begin(), truth.end(), t,
+        [](const StampedPose& pose, double time) { return pose.timestamp < time - 1e-6; });
+    const std::size_t i = static_cast<std::size_t>(at - truth.begin());
+    if (i < kTwistWarmUpFrames || i + 1 >= truth.size()) continue;
+    const double span = truth[i + 1].timestamp - truth[i - 1].timestamp;
+    const Eigen::Matrix3d R = truth[i].T_wc.Rotation();
+    const Eigen::Vector3d linear =
+        R.transpose() * (truth[i + 1].T_wc.Translation() - truth[i - 1].T_wc.Translation()) / span;
+    const Eigen::AngleAxisd turn(truth[i - 1].T_wc.Rotation().transpose() *
+                                 truth[i + 1].T_wc.Rotation());
+    const Eigen::Vector3d angular = turn.angle() * turn.axis() / span;
+    linear_sum += (twist.first - linear).squaredNorm();
+    angular_sum += (twist.second - angular).squaredNorm();
+    speed_sum += linear.squaredNorm();
+    ++compared;
+  }
+  ASSERT_GT(compared, 0u);
+  const double linear_rmse = std::sqrt(linear_sum / compared);
+  const double angular_rmse = std::sqrt(angular_sum / compared);
+  std::printf(
+      "twist against the ground truth's central differences over %zu frames: linear RMSE %.3f "
+      "m/s (the camera's rms speed %.3f m/s), angular RMSE %.3f rad/s\n",
+      compared, linear_rmse, std::sqrt(speed_sum / compared), angular_rmse);
+  EXPECT_EQ(with_pose_covariance, latency_ms.size() - 1)
+      << "every odometry but the map's origin (exact by definition) carries a pose covariance";
+  EXPECT_EQ(with_twist_covariance, latency_ms.size());
+  EXPECT_LT(linear_rmse, kMaxTwistLinearRmse);
+  EXPECT_LT(angular_rmse, kMaxTwistAngularRmse);
 
   ASSERT_GE(grids, 1u) << "no occupancy grid received";
   EXPECT_EQ(last_grid_frame, "drvslam_grid");

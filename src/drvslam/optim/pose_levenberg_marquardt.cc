@@ -110,6 +110,16 @@ double PoseTermChi2(const ProjectionIntrinsics& intrinsics, const Eigen::Matrix3
       .squaredNorm();
 }
 
+Matrix6d PoseNormalMatrix(const ProjectionIntrinsics& intrinsics,
+                          const std::vector<PoseTerm>& terms, const SE3& T_cw) {
+  double cost = 0.0;
+  Normal normal;
+  if (!Evaluate(intrinsics, terms, PoseRefinementSettings{}, T_cw, &cost, &normal)) {
+    return Matrix6d::Zero();
+  }
+  return normal.hessian;
+}
+
 bool RefinePose(const ProjectionIntrinsics& intrinsics, const std::vector<PoseTerm>& terms,
                 const PoseRefinementSettings& settings, SE3* T_cw) {
   SE3 pose = *T_cw;

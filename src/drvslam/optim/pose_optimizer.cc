@@ -179,6 +179,24 @@ void PoseOptimizerOptions::Check() const {
                 chi2_stereo, "must be a positive number");
 }
 
+Eigen::Matrix<double, 6, 6> PoseInformation(const CameraOptions& camera, const SE3& T_cw,
+                                            const std::vector<PoseObservation>& observations) {
+  camera.Check();
+  const ProjectionIntrinsics intrinsics = ProjectionIntrinsics::From(camera);
+  const Eigen::Matrix3d rotation = T_cw.Rotation();
+  std::vector<PoseTerm> terms;
+  terms.reserve(observations.size());
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    CheckObservation(observations[i], i);
+    PoseTerm term = ToTerm(observations[i]);
+    // A point behind the camera says nothing about the pose here.
+    if (std::isfinite(PoseTermChi2(intrinsics, rotation, T_cw.Translation(), term))) {
+      terms.push_back(term);
+    }
+  }
+  return PoseNormalMatrix(intrinsics, terms, T_cw);
+}
+
 PoseOptimizationResult OptimizePose(const CameraOptions& camera, const SE3& initial_T_cw,
                                     const std::vector<PoseObservation>& observations,
                                     const PoseOptimizerOptions& options) {

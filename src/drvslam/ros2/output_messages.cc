@@ -57,14 +57,24 @@ TransformMessage::TransformMessage(const SE3& T_parent_child, std::int64_t stamp
       BorrowOne<dds_sequence_geometry_msgs_msg_dds__TransformStamped_>(&transform_);
 }
 
-PoseMessages::PoseMessages(const SE3& T_wc, std::int64_t stamp_ns, const std::string& map_frame,
-                           const std::string& camera_frame)
+PoseMessages::PoseMessages(const OdometryEstimate& estimate, std::int64_t stamp_ns,
+                           const std::string& map_frame, const std::string& camera_frame)
     : map_frame_(map_frame),
       camera_frame_(camera_frame),
-      transform_(T_wc, stamp_ns, map_frame, camera_frame) {
+      transform_(estimate.T_wc, stamp_ns, map_frame, camera_frame) {
   odometry_.header = Header(stamp_ns, map_frame_);
   odometry_.child_frame_id = Text(camera_frame_);
-  odometry_.pose.pose = PoseOf(T_wc);
+  odometry_.pose.pose = PoseOf(estimate.T_wc);
+  const Eigen::Vector3d& v = estimate.linear_velocity;
+  const Eigen::Vector3d& w = estimate.angular_velocity;
+  odometry_.twist.twist.linear = {v.x(), v.y(), v.z()};
+  odometry_.twist.twist.angular = {w.x(), w.y(), w.z()};
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      odometry_.pose.covariance[6 * r + c] = estimate.pose_covariance(r, c);
+      odometry_.twist.covariance[6 * r + c] = estimate.twist_covariance(r, c);
+    }
+  }
   pose_.header = odometry_.header;
   pose_.pose = odometry_.pose.pose;
 }

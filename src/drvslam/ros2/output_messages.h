@@ -42,13 +42,24 @@ class TransformMessage : NonMovable {
   tf2_msgs_msg_dds__TFMessage_ message_{};
 };
 
+// What Odometry carries of one frame (TrackResult's causal pose, velocity and covariances).
+struct OdometryEstimate {
+  SE3 T_wc;
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // camera frame, m/s
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // camera frame, rad/s
+  // Over (x, y, z, rotation about the parent's x, y, z), parent frame.
+  Eigen::Matrix<double, 6, 6> pose_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  // Over (linear, angular velocity), child frame.
+  Eigen::Matrix<double, 6, 6> twist_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+};
+
 // The camera pose T_wc at `stamp_ns` in frame `map_frame` (drvslam's world frame: the first
-// camera's optical frame), child `camera_frame`. Covariances are all zero (ROS's "unknown") and
-// the twist is zero: drvslam estimates neither.
+// camera's optical frame), child `camera_frame`. Odometry carries the pose with its covariance
+// and, as REP 105 asks, the twist and its covariance in the child frame (row-major 6x6).
 class PoseMessages : NonMovable {
  public:
-  PoseMessages(const SE3& T_wc, std::int64_t stamp_ns, const std::string& map_frame,
-               const std::string& camera_frame);
+  PoseMessages(const OdometryEstimate& estimate, std::int64_t stamp_ns,
+               const std::string& map_frame, const std::string& camera_frame);
   const nav_msgs_msg_dds__Odometry_& Odometry() const { return odometry_; }
   const geometry_msgs_msg_dds__PoseStamped_& Pose() const { return pose_; }
   const tf2_msgs_msg_dds__TFMessage_& Transforms() const { return transform_.Message(); }

@@ -251,7 +251,13 @@ class Ros2Node {
     ++summary_->pairs_tracked;
     last_stamp_ns_ = pair.stamp_ns;
     if (result.pose_valid && result.quality == LocalizationQuality::kVerified) {
-      const PoseMessages messages(result.T_wc, pair.stamp_ns, options_.map_frame,
+      OdometryEstimate estimate;
+      estimate.T_wc = result.T_wc;
+      estimate.linear_velocity = result.linear_velocity;
+      estimate.angular_velocity = result.angular_velocity;
+      estimate.pose_covariance = result.pose_covariance;
+      estimate.twist_covariance = result.twist_covariance;
+      const PoseMessages messages(estimate, pair.stamp_ns, options_.map_frame,
                                   options_.camera_frame);
       publishers_.odometry.Write(messages.Odometry());
       publishers_.pose.Write(messages.Pose());

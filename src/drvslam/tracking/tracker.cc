@@ -65,6 +65,7 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
       result.new_keyframe = last_keyframe_;
       result.inliers = static_cast<int>(map_.MapPointCount());
       recorder_.AddTracked(current_->Timestamp(), current_->Pose(), reference_keyframe_);
+      last_information_.setZero();
       last_frame_ = std::move(current_);
     } else {
       recorder_.AddLost(current_->Timestamp());
@@ -159,6 +160,7 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
   for (std::size_t i = 0; i < current_->Size(); ++i) {
     if (current_->outlier[i]) current_->map_points[i].reset();
   }
+  last_information_ = CurrentPoseInformation();
   last_frame_ = std::move(current_);
   result.state = state_;
   result.quality = check_.Quality(true);
@@ -313,6 +315,14 @@ int Tracker::OptimizeCurrentPose() {
     }
   }
   return inliers;
+}
+
+Eigen::Matrix<double, 6, 6> Tracker::CurrentPoseInformation() const {
+  std::vector<PoseObservation> observations;
+  std::vector<std::size_t> slots;
+  GatherPoseObservations(current_->Features(), current_->Geometry().pyramid, current_->map_points,
+                         &observations, &slots);
+  return PoseInformation(current_->Geometry().camera.Options(), current_->Pose(), observations);
 }
 
 bool Tracker::NeedNewKeyFrame(const cv::Mat& depth_image) const {

@@ -88,6 +88,9 @@ class Tracker {
   const TrajectoryRecorder& Recorder() const { return recorder_; }
   // The last tracked frame (nullopt before the first one).
   const std::optional<Frame>& LastFrame() const { return last_frame_; }
+  // The information matrix of the last tracked frame's pose (optim/pose_optimizer.h:
+  // PoseInformation) from its inlier matches; zero for a map's first frame (its origin).
+  const Eigen::Matrix<double, 6, 6>& LastPoseInformation() const { return last_information_; }
   // Frames for which the motion model failed and the reference keyframe was used.
   int ReferenceFallbacks() const { return reference_fallbacks_; }
   // The rolling-shutter readout tracking uses now (seconds; estimated when enabled).
@@ -113,6 +116,8 @@ class Tracker {
   // Pose-only optimization of current_ from its matches; outlier matches are dropped.
   // Returns the inlier count.
   int OptimizeCurrentPose();
+  // PoseInformation of current_'s pose from the map points it still holds.
+  Eigen::Matrix<double, 6, 6> CurrentPoseInformation() const;
   // `depth_image`: the frame's (may be empty), for the reference points hidden behind
   // something nearer (Tracking.keyframeOcclusion).
   bool NeedNewKeyFrame(const cv::Mat& depth_image) const;
@@ -156,6 +161,7 @@ class Tracker {
   bool reset_pending_ = false;
   long seen_correction_epoch_ = 0;  // the map's correction epoch the last frame is posed in
   SE3 last_frame_T_cr_;             // the last frame relative to its reference keyframe
+  Eigen::Matrix<double, 6, 6> last_information_ = Eigen::Matrix<double, 6, 6>::Zero();
   // The last keyframe decision's evidence (for KeyFrameLikely); reset when a keyframe is made.
   mutable std::optional<KeyFrameEvidence> last_evidence_;
 };

@@ -38,14 +38,16 @@ const OptionTable<TrackerOptions>& TrackerOptionTable() {
         .Bool("smoothTrajectory", &T::smooth_trajectory,
               "Smooth the saved camera trajectory with a constant-velocity motion prior, "
               "weighing each pose by the frame-to-frame scatter measured in it (1), or save "
-              "the poses as tracked (0). The per-frame poses of a run are not changed.")
+              "the poses as tracked (0). The per-frame poses TrackRGBD returns are the causal "
+              "filter's either way.")
         .Real("smoothingAcceleration", &T::smoothing_acceleration, Bounds::Above(0.0),
-              "smoothTrajectory: standard deviation of the camera's acceleration over one "
-              "frame interval, m/s².")
+              "Motion prior of the saved trajectory's smoother and of the causal per-frame pose: "
+              "standard deviation of the camera's acceleration over one frame interval, m/s².")
         .Real("smoothingAngularAcceleration", &T::smoothing_angular_acceleration,
               Bounds::Above(0.0),
-              "smoothTrajectory: standard deviation of the camera's angular acceleration over "
-              "one frame interval, rad/s².");
+              "Motion prior of the saved trajectory's smoother and of the causal per-frame pose: "
+              "standard deviation of the camera's angular acceleration over one frame "
+              "interval, rad/s².");
     return t;
   }();
   return table;

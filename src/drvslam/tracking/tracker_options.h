@@ -43,10 +43,12 @@ struct TrackerOptions {
   bool keyframe_occlusion = true;
   // Tracking.smoothTrajectory: the trajectory read at the end (System::CameraTrajectory, the
   // saved CameraTrajectory) is smoothed with a constant-velocity motion prior
-  // (trajectory_smoother.h); the per-frame poses TrackRGBD returns are not.
+  // (trajectory_smoother.h); the per-frame poses TrackRGBD returns are the causal filter's
+  // (causal_pose_filter.h), whatever this says.
   bool smooth_trajectory = true;
-  // Tracking.smoothingAcceleration / smoothingAngularAcceleration: the prior's standard
-  // deviation of the camera's acceleration over one frame interval (m/s², rad/s²).
+  // Tracking.smoothingAcceleration / smoothingAngularAcceleration: the motion prior's standard
+  // deviation of the camera's acceleration over one frame interval (m/s², rad/s²), for the
+  // smoother and the causal filter alike.
   double smoothing_acceleration = 1.0;
   double smoothing_angular_acceleration = 2.0;
 

@@ -146,6 +146,34 @@ std::string ViewerCostRow(const BenchmarkEntryResult& entry) {
 
 // The tracking thread's cost of the live viewer, viewer-on and -off entries in one table, and
 // what each viewer run's browser got.
+// "median (min-max)" in centimetres, or n/a.
+std::string CentimetreSpread(const ErrorStatistics& statistics) {
+  if (statistics.count == 0) return "n/a";
+  return Centimetres(statistics.median) + " (" + Centimetres(statistics.min) + "-" +
+         Centimetres(statistics.max) + ")";
+}
+
+// Each entry's three trajectories: the saved (smoothed) one, the causal poses a robot got
+// while the run went on, and the poses as tracked.
+std::string TrajectoriesSection(const BenchmarkReport& report) {
+  std::string text =
+      "## Trajectories\n\nPer entry, median (min-max) over its runs: ATE and jitter (RMS of the "
+      "second difference of consecutive camera centres) of the saved trajectory "
+      "(CameraTrajectory.txt, smoothed after the run), of the causal poses TrackRGBD returned "
+      "(OnlineCameraTrajectory.txt) and of the poses as tracked "
+      "(TrackedCameraTrajectory.txt).\n\n"
+      "| entry | saved ATE (cm) | saved jitter (cm) | causal ATE (cm) | causal jitter (cm) | "
+      "tracked ATE (cm) | tracked jitter (cm) |\n|---|---|---|---|---|---|---|\n";
+  for (const BenchmarkEntryResult& entry : report.entries) {
+    const BenchmarkAggregate& a = entry.aggregate;
+    text += "| " + entry.entry.name + " | " + CentimetreSpread(a.ate_rmse) + " | " +
+            CentimetreSpread(a.jitter) + " | " + CentimetreSpread(a.causal_ate_rmse) + " | " +
+            CentimetreSpread(a.causal_jitter) + " | " + CentimetreSpread(a.tracked_ate_rmse) +
+            " | " + CentimetreSpread(a.tracked_jitter) + " |\n";
+  }
+  return text + "\n";
+}
+
 std::string ViewerCostSection(const BenchmarkReport& report) {
   std::string text =
       "## Tracking-thread cost of the live viewer\n\n"
@@ -256,6 +284,11 @@ nlohmann::json RunJson(const BenchmarkRun& run) {
                              {"ate_coverage", OrNull(run.ate_coverage)},
                              {"rpe_trans_rmse_m", OrNull(run.rpe_trans_rmse)},
                              {"rpe_rot_rmse_deg", OrNull(run.rpe_rot_rmse_deg)},
+                             {"jitter_m", OrNull(run.jitter)},
+                             {"causal_ate_rmse_m", OrNull(run.causal_ate_rmse)},
+                             {"causal_jitter_m", OrNull(run.causal_jitter)},
+                             {"tracked_ate_rmse_m", OrNull(run.tracked_ate_rmse)},
+                             {"tracked_jitter_m", OrNull(run.tracked_jitter)},
                              {"eval_note", TextOrNull(run.eval_note)},
                              {"fps", run.fps},
                              {"track_median_ms", run.track_median_ms},
@@ -276,6 +309,11 @@ nlohmann::json AggregateJson(const BenchmarkAggregate& a) {
                          {"ate_rmse_m", StatisticsJson(a.ate_rmse)},
                          {"rpe_trans_rmse_m", StatisticsJson(a.rpe_trans_rmse)},
                          {"rpe_rot_rmse_deg", StatisticsJson(a.rpe_rot_rmse_deg)},
+                         {"jitter_m", StatisticsJson(a.jitter)},
+                         {"causal_ate_rmse_m", StatisticsJson(a.causal_ate_rmse)},
+                         {"causal_jitter_m", StatisticsJson(a.causal_jitter)},
+                         {"tracked_ate_rmse_m", StatisticsJson(a.tracked_ate_rmse)},
+                         {"tracked_jitter_m", StatisticsJson(a.tracked_jitter)},
                          {"tracked_share", StatisticsJson(a.tracked_share)},
                          {"frames_lost", StatisticsJson(a.frames_lost)},
                          {"wall_s", StatisticsJson(a.wall_s)},
@@ -371,6 +409,7 @@ std::string FormatBenchmarkMarkdown(const BenchmarkReport& report) {
         "perceives on its own.\n\n";
   }
 
+  text += TrajectoriesSection(report);
   if (AnyViewer(report)) text += ViewerCostSection(report);
 
   text += "## Commands\n\nRun k of an entry is this command with `--out` ending in `run_k`:\n\n";

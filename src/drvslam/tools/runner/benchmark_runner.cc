@@ -16,6 +16,7 @@
 #include "drvslam/settings_registry.h"
 #include "drvslam/tools/eval/ate.h"
 #include "drvslam/tools/eval/eval_report.h"
+#include "drvslam/tools/eval/jitter.h"
 #include "drvslam/tools/eval/rpe.h"
 #include "drvslam/tools/runner/benchmark_report.h"
 #include "drvslam/tools/runner/dynamic_run_setup.h"
@@ -122,6 +123,33 @@ std::optional<double> TrackingWaitSeconds(const std::vector<ThreadUsage>& thread
   return std::nullopt;
 }
 
+// ATE (m) of a TUM trajectory file, and its jitter; unset where the file or the ATE is missing.
+void TrajectoryFigures(const Trajectory& groundtruth, const fs::path& path,
+                       std::size_t sequence_frames, std::optional<double>* ate_rmse,
+                       std::optional<double>* jitter) {
+  try {
+    const Trajectory estimate = ReadTumTrajectory(path.string(), /*allow_empty=*/true);
+    if (jitter) *jitter = CentreJitter(estimate);
+    if (!ate_rmse) return;
+    AteOptions options;
+    options.sequence_frames = sequence_frames;
+    *ate_rmse = ComputeAte(groundtruth, estimate, options).errors.rmse;
+  } catch (const Error&) {
+    // A trajectory too short to evaluate: its figures stay unset (n/a in the report).
+  }
+}
+
+// The saved trajectory's jitter, and the causal and as-tracked trajectories' ATE and jitter.
+void EvaluateCausalAndTracked(const Trajectory& groundtruth, const fs::path& run_dir,
+                              std::size_t sequence_frames, BenchmarkRun* run) {
+  TrajectoryFigures(groundtruth, run_dir / "CameraTrajectory.txt", sequence_frames, nullptr,
+                    &run->jitter);
+  TrajectoryFigures(groundtruth, run_dir / "OnlineCameraTrajectory.txt", sequence_frames,
+                    &run->causal_ate_rmse, &run->causal_jitter);
+  TrajectoryFigures(groundtruth, run_dir / "TrackedCameraTrajectory.txt", sequence_frames,
+                    &run->tracked_ate_rmse, &run->tracked_jitter);
+}
+
 // ATE and RPE of the run's trajectory; eval.json records them, or why they are missing.
 // `sequence_frames`: the frames the run was given, what ATE coverage counts against.
 void Evaluate(const Trajectory& groundtruth, const std::string& trajectory_path,
@@ -153,6 +181,8 @@ void Evaluate(const Trajectory& groundtruth, const std::string& trajectory_path,
     run->rpe_trans_rmse = rpe->trans_rmse;
     run->rpe_rot_rmse_deg = rpe->rot_rmse_deg;
   }
+  EvaluateCausalAndTracked(groundtruth, fs::path(trajectory_path).parent_path(), sequence_frames,
+                           run);
   nlohmann::json json = EvalReportJson(ate.value_or(AteResult{}), rpe.value_or(RpeResult{}));
   if (!ate) json["ate"] = nullptr;
   if (!rpe) json["rpe"] = nullptr;
@@ -332,6 +362,10 @@ std::size_t BenchmarkReport::FailedRuns() const {
 
 BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   std::vector<double> ate, rpe_trans, rpe_rot, tracked, lost, wall, fps, median, p95;
+  std::vector<double> jitter, causal_ate, causal_jitter, tracked_ate, tracked_jitter;
+  const auto add = [](std::vector<double>& to, const std::optional<double>& value) {
+    if (value) to.push_back(*value);
+  };
   FigureOfEveryRun skipped, camera_to_done, tracking_wait, observer_median, observer_p95;
   BenchmarkAggregate aggregate;
   aggregate.runs = runs.size();
@@ -341,6 +375,11 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
     if (run.ate_rmse) ate.push_back(*run.ate_rmse);
     if (run.rpe_trans_rmse) rpe_trans.push_back(*run.rpe_trans_rmse);
     if (run.rpe_rot_rmse_deg) rpe_rot.push_back(*run.rpe_rot_rmse_deg);
+    add(jitter, run.jitter);
+    add(causal_ate, run.causal_ate_rmse);
+    add(causal_jitter, run.causal_jitter);
+    add(tracked_ate, run.tracked_ate_rmse);
+    add(tracked_jitter, run.tracked_jitter);
     tracked.push_back(run.tracked_share);
     lost.push_back(static_cast<double>(run.frames_lost));
     wall.push_back(run.wall_s);
@@ -358,6 +397,11 @@ BenchmarkAggregate AggregateRuns(const std::vector<BenchmarkRun>& runs) {
   aggregate.ate_rmse = ComputeErrorStatistics(ate);
   aggregate.rpe_trans_rmse = ComputeErrorStatistics(rpe_trans);
   aggregate.rpe_rot_rmse_deg = ComputeErrorStatistics(rpe_rot);
+  aggregate.jitter = ComputeErrorStatistics(jitter);
+  aggregate.causal_ate_rmse = ComputeErrorStatistics(causal_ate);
+  aggregate.causal_jitter = ComputeErrorStatistics(causal_jitter);
+  aggregate.tracked_ate_rmse = ComputeErrorStatistics(tracked_ate);
+  aggregate.tracked_jitter = ComputeErrorStatistics(tracked_jitter);
   aggregate.tracked_share = ComputeErrorStatistics(tracked);
   aggregate.frames_lost = ComputeErrorStatistics(lost);
   aggregate.wall_s = ComputeErrorStatistics(wall);

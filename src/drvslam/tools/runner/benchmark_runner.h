@@ -53,7 +53,15 @@ struct BenchmarkRun {
   std::optional<double> ate_coverage;
   std::optional<double> rpe_trans_rmse;  // m over 1 s; unset when too few pairs
   std::optional<double> rpe_rot_rmse_deg;
-  std::string eval_note;         // why ATE or RPE is missing
+  std::string eval_note;  // why ATE or RPE is missing
+  // The three trajectories of the run (m): the saved one's jitter (its ATE is ate_rmse), and
+  // the ATE and jitter (eval/jitter.h) of the causal poses (OnlineCameraTrajectory.txt) and of
+  // the poses as tracked (TrackedCameraTrajectory.txt).
+  std::optional<double> jitter;
+  std::optional<double> causal_ate_rmse;
+  std::optional<double> causal_jitter;
+  std::optional<double> tracked_ate_rmse;
+  std::optional<double> tracked_jitter;
   double wall_s = 0.0;           // the whole RunSequence call: start-up, frames, shutdown, outputs
   double fps = 0.0;              // frames / wall_s
   double track_median_ms = 0.0;  // stats stage "total": the tracking thread's time per frame
@@ -81,6 +89,12 @@ struct BenchmarkAggregate {
   ErrorStatistics ate_rmse;        // m, over evaluated runs
   ErrorStatistics rpe_trans_rmse;  // m, over runs with an RPE
   ErrorStatistics rpe_rot_rmse_deg;
+  // BenchmarkRun's trajectory figures, each over the runs that have it.
+  ErrorStatistics jitter;
+  ErrorStatistics causal_ate_rmse;
+  ErrorStatistics causal_jitter;
+  ErrorStatistics tracked_ate_rmse;
+  ErrorStatistics tracked_jitter;
   // The rest over finished runs.
   ErrorStatistics tracked_share;
   ErrorStatistics frames_lost;

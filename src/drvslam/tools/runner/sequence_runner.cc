@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -198,6 +199,26 @@ RunSetup PrepareRun(const RunOptions& options) {
   return setup;
 }
 
+namespace {
+
+// One line per tracked frame: timestamp, then the causal linear (m/s) and angular (rad/s)
+// velocity in the camera frame.
+void WriteVelocities(const fs::path& path, const std::vector<StampedVelocity>& velocities) {
+  std::ofstream out(path);
+  out << "# drvslam causal camera velocity, camera frame: timestamp vx vy vz (m/s) wx wy wz "
+         "(rad/s)\n";
+  char line[256];
+  for (const StampedVelocity& v : velocities) {
+    std::snprintf(line, sizeof(line), "%.6f %.6f %.6f %.6f %.6f %.6f %.6f\n", v.timestamp,
+                  v.linear.x(), v.linear.y(), v.linear.z(), v.angular.x(), v.angular.y(),
+                  v.angular.z());
+    out << line;
+  }
+  if (!out) throw Error(path.string() + ": cannot write");
+}
+
+}  // namespace
+
 std::string WriteRunTrajectories(const System& system, const std::string& out_dir,
                                  TrajectoryFormat format) {
   const fs::path folder = out_dir.empty() ? fs::path(".") : fs::path(out_dir);
@@ -209,6 +230,11 @@ std::string WriteRunTrajectories(const System& system, const std::string& out_di
   WriteTrajectory(TrajectoryFilePath((folder / "TrackedCameraTrajectory").string(), format),
                   system.TrackedCameraTrajectory(), format,
                   "drvslam camera trajectory (T_wc) as tracked, before smoothing");
+  // The causal poses TrackRGBD returned, as a robot got them while the run went on.
+  WriteTrajectory(TrajectoryFilePath((folder / "OnlineCameraTrajectory").string(), format),
+                  system.OnlineCameraTrajectory(), format,
+                  "drvslam causal camera trajectory (T_wc) as returned per frame");
+  WriteVelocities(folder / "OnlineCameraVelocity.txt", system.OnlineCameraVelocities());
   WriteTrajectory(TrajectoryFilePath((folder / "KeyFrameTrajectory").string(), format),
                   system.KeyFrameTrajectory(), format, "drvslam keyframe trajectory (T_wc)");
   return camera_path;

@@ -1,7 +1,8 @@
 // RunSequence: drvslam's main job on a TUM-layout folder: settings resolution, the frame loop
 // through System, and the outputs (CameraTrajectory.txt, TrackedCameraTrajectory.txt,
-// KeyFrameTrajectory.txt, stats.json, sparse_map.ply: the map points' positions).
-// Whatever was tracked is written even when a frame fails to load or the run is interrupted.
+// OnlineCameraTrajectory.txt, KeyFrameTrajectory.txt, stats.json, sparse_map.ply: the map points'
+// positions). Whatever was tracked is written even when a frame fails to load or the run is
+// interrupted.
 #pragma once
 
 #include <atomic>
@@ -86,9 +87,11 @@ struct RunSetup {
 RunSetup PrepareRun(const RunOptions& options);
 
 // Writes OUT/CameraTrajectory (smoothed when Tracking.smoothTrajectory is on),
-// OUT/TrackedCameraTrajectory and OUT/KeyFrameTrajectory of `system` in `format` (.txt, .csv
-// for euroc; kitti also *_times.txt), as `drvslam run` does after System::Shutdown; returns the
-// camera trajectory's path. Throws Error when a file cannot be written.
+// OUT/TrackedCameraTrajectory, OUT/OnlineCameraTrajectory (the causal poses TrackRGBD
+// returned; their velocities in OUT/OnlineCameraVelocity.txt) and OUT/KeyFrameTrajectory of
+// `system` in `format` (.txt, .csv for euroc; kitti also *_times.txt), as `drvslam run` does after
+// System::Shutdown; returns the camera trajectory's path. Throws Error when a file cannot be
+// written.
 std::string WriteRunTrajectories(const System& system, const std::string& out_dir,
                                  TrajectoryFormat format);
 
