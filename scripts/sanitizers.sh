@@ -75,7 +75,9 @@ case "$kind" in
       semantic_test async_segmenter_test feature_test core_test core_threads_test eval_test
       match_test optim_test pose_graph_test
       rigid_transform_ransac_test tracking_test tracking_mapping_handoff_test map_file_test
-      tracking_trajectory_smoother_test
+      tracking_trajectory_smoother_test tracking_causal_pose_filter_test
+      tracking_feature_budget_test tracking_keyframe_occlusion_test tracking_rolling_shutter_test
+      occupancy_grid_test ros2_msgs_test synth_render_cache_test
     )
     export ASAN_OPTIONS="detect_leaks=1:log_path=REPORTS/asan:${ASAN_OPTIONS:-}"
     # OpenCV's gPhoto2 camera backend off. cv::VideoCapture, handed a file no file backend reads
