@@ -3,8 +3,9 @@
 // says (the mean normalized estimation error squared of the pose lies between half and twice
 // its 6 degrees of freedom), its velocity follows the ground truth's central differences, and
 // it shakes less from frame to frame than the pose as tracked. One short sequence per case:
-// static_xyz and walking_xyz; walking_xyz rendered with --real-camera (depth noise and holes,
-// rolling shutter, motion blur, auto exposure, lens distortion) fails the NEES bound and is off.
+// static_xyz and walking_xyz. Not yet walking_xyz rendered with --real-camera (depth noise and
+// holes, rolling shutter, motion blur, auto exposure, lens distortion): there the error is far
+// beyond the covariance (mean NEES 772), an error the frame-to-frame scatter does not show.
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -142,15 +143,6 @@ INSTANTIATE_TEST_SUITE_P(Synthetic, CausalPoseTest,
                          [](const ::testing::TestParamInfo<Case>& info) {
                            return info.param.name;
                          });
-
-// Off: with --real-camera the causal pose's error against the ground truth is far beyond its
-// covariance (mean NEES 772, position 133 of 3, on this build): an error the frame-to-frame
-// scatter does not show. It stays here to measure that with
-// --gtest_also_run_disabled_tests --gtest_filter='*RealCamera*'.
-INSTANTIATE_TEST_SUITE_P(
-    DISABLED_RealCamera, CausalPoseTest,
-    ::testing::Values(Case{"real_camera", "--scenario walking_xyz --real-camera"}),
-    [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
 
 }  // namespace
 }  // namespace drvslam
