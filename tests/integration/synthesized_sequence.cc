@@ -45,10 +45,12 @@ std::string SynthesizeSequence(const fs::path& root, const std::string& synth_ar
   if (!cached) return Render(cli, synth_args, root / "seq", log);
   if (cached->empty()) return "rendering into the cache failed:\n" + ReadFile(log);
   std::error_code error;
+  fs::remove_all(root / "seq", error);  // as `synth --out` replaces the folder
   fs::copy(*cached, root / "seq", fs::copy_options::recursive, error);
-  if (error)
+  if (error) {
     return "copying " + cached->string() + " to " + (root / "seq").string() + ": " +
            error.message();
+  }
   return "";
 }
 

@@ -81,8 +81,10 @@ std::optional<FloorPlane> BestHypothesis(const std::vector<Eigen::Vector3d>& poi
       const double share = static_cast<double>(best->inliers) / scored->size();
       const double all_three = std::pow(share, 3.0);
       if (all_three >= 1.0) break;
-      needed = std::min(search.iterations, static_cast<int>(std::ceil(std::log(1.0 - kConfidence) /
-                                                                      std::log(1.0 - all_three))));
+      // Bounded in double before the cast: a weak first plane needs more draws than an int holds
+      // (and log1p(-x) is 0 for a tiny x, which makes the quotient infinite).
+      const double draws = std::ceil(std::log(1.0 - kConfidence) / std::log1p(-all_three));
+      needed = static_cast<int>(std::min(static_cast<double>(search.iterations), draws));
     }
   }
   return best;

@@ -37,12 +37,12 @@ struct PoseRefinementSettings {
 // Minimizes sum_i huber(|r_i|^2) over T_cw, starting from *T_cw, with Ceres's termination rules
 // (relative cost change 1e-6, step 1e-8). Every attempted step counts as an iteration. Returns
 // false and leaves *T_cw alone when the start cannot be evaluated (a point not in front).
+bool RefinePose(const ProjectionIntrinsics& intrinsics, const std::vector<PoseTerm>& terms,
+                const PoseRefinementSettings& settings, SE3* T_cw);
+
 // sum J^T J of the terms at T_cw (no robust kernel): the Gauss-Newton information of the left
 // twist. Zero when a point is not in front of the camera.
 Eigen::Matrix<double, 6, 6> PoseNormalMatrix(const ProjectionIntrinsics& intrinsics,
                                              const std::vector<PoseTerm>& terms, const SE3& T_cw);
-
-bool RefinePose(const ProjectionIntrinsics& intrinsics, const std::vector<PoseTerm>& terms,
-                const PoseRefinementSettings& settings, SE3* T_cw);
 
 }  // namespace drvslam

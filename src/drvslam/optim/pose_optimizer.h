@@ -48,15 +48,15 @@ struct PoseOptimizationResult {
 // is left as it is. Throws drvslam::Error on bad options, camera, initial pose or an observation
 // with non-finite values or inv_sigma2 <= 0. Deterministic: the same input gives a bit-identical
 // result.
+PoseOptimizationResult OptimizePose(const CameraOptions& camera, const SE3& initial_T_cw,
+                                    const std::vector<PoseObservation>& observations,
+                                    const PoseOptimizerOptions& options = {});
+
 // The information matrix (inverse covariance) of the pose T_cw over the left twist (rho, phi)
 // of T_cw (SE3::Exp(twist) * T_cw), from the observations with the weights they have in the
 // solve (pixel noise of one pyramid-level sigma), without the robust kernel. Observations not in
 // front of the camera add nothing. It treats the map points as exact.
 Eigen::Matrix<double, 6, 6> PoseInformation(const CameraOptions& camera, const SE3& T_cw,
                                             const std::vector<PoseObservation>& observations);
-
-PoseOptimizationResult OptimizePose(const CameraOptions& camera, const SE3& initial_T_cw,
-                                    const std::vector<PoseObservation>& observations,
-                                    const PoseOptimizerOptions& options = {});
 
 }  // namespace drvslam

@@ -144,6 +144,9 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
     rolling_shutter_.AddStep(*velocity_, current_->Timestamp() - last_frame_->Timestamp());
   }
   result.inliers = matches_inliers_;
+  // Before a keyframe is made: its new map points are unprojected from this very pose, so they
+  // fit it exactly and say nothing about where it is.
+  last_information_ = CurrentPoseInformation();
   // No keyframe is made from a pose that may be a repeat of the scene away.
   if (!localization_only_ && !check_.Pending() && NeedNewKeyFrame(depth)) {
     last_evidence_.reset();
@@ -160,7 +163,6 @@ TrackingResult Tracker::Track(Frame frame, const cv::Mat& depth) {
   for (std::size_t i = 0; i < current_->Size(); ++i) {
     if (current_->outlier[i]) current_->map_points[i].reset();
   }
-  last_information_ = CurrentPoseInformation();
   last_frame_ = std::move(current_);
   result.state = state_;
   result.quality = check_.Quality(true);
@@ -322,6 +324,12 @@ Eigen::Matrix<double, 6, 6> Tracker::CurrentPoseInformation() const {
   std::vector<std::size_t> slots;
   GatherPoseObservations(current_->Features(), current_->Geometry().pyramid, current_->map_points,
                          &observations, &slots);
+  // The solve's outliers carry no information about the pose.
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < observations.size(); ++k) {
+    if (!current_->outlier[slots[k]]) observations[kept++] = observations[k];
+  }
+  observations.resize(kept);
   return PoseInformation(current_->Geometry().camera.Options(), current_->Pose(), observations);
 }
 

@@ -116,7 +116,8 @@ class Tracker {
   // Pose-only optimization of current_ from its matches; outlier matches are dropped.
   // Returns the inlier count.
   int OptimizeCurrentPose();
-  // PoseInformation of current_'s pose from the map points it still holds.
+  // PoseInformation of current_'s pose from its matched map points that are not outliers of
+  // the solve (taken before a keyframe adds points made from this pose).
   Eigen::Matrix<double, 6, 6> CurrentPoseInformation() const;
   // `depth_image`: the frame's (may be empty), for the reference points hidden behind
   // something nearer (Tracking.keyframeOcclusion).
