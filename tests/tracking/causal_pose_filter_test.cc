@@ -184,6 +184,32 @@ TEST(CausalPoseFilterTest, VelocityFollowsThePath) {
   EXPECT_LT(std::sqrt(angular / n), 0.2);
 }
 
+// --realtime on a busy machine tracks only some frames: here every sixth (0.2 s apart). The
+// prediction bridges the gaps, so the velocity is still the path's; a gap of over half a second
+// starts the filter afresh, with the velocity unknown (zero).
+TEST(CausalPoseFilterTest, SkippedFramesKeepTheVelocityALongGapForgetsIt) {
+  const std::vector<Measurement> all = Measure(1.0);
+  CausalPoseFilter filter(Options());
+  double linear = 0.0, speed = 0.0;
+  int compared = 0;
+  for (int i = 0; i < kFrames; i += 6) {
+    const CausalPose estimate = filter.Update(all[i].timestamp, all[i].T_wc, all[i].covariance);
+    if (i < kWarmUp) continue;
+    Eigen::Vector3d true_linear, true_angular;
+    PathVelocity(i * kDt, &true_linear, &true_angular);
+    linear += (estimate.linear_velocity - true_linear).squaredNorm();
+    speed += true_linear.squaredNorm();
+    ++compared;
+  }
+  ASSERT_GT(compared, 50);
+  EXPECT_GT(std::sqrt(speed / compared), 0.3);
+  EXPECT_LT(std::sqrt(linear / compared), 0.15);
+  // 0.6 s after the last of those frames: no motion is known across the gap.
+  const double later = all.back().timestamp + 0.6;
+  const CausalPose restarted = filter.Update(later, PathPose(later), all.back().covariance);
+  EXPECT_EQ(restarted.linear_velocity.norm(), 0.0);
+}
+
 TEST(CausalPoseFilterTest, CovarianceIsConsistent) {
   const std::vector<CausalPose> estimates = Filtered(Measure(1.0, /*with_map_error=*/true));
   const double nees = MeanPoseNees(estimates, kWarmUp);

@@ -6,8 +6,6 @@
 #include <cmath>
 #include <vector>
 
-#include "drvslam/tracking/trajectory_smoother.h"
-
 namespace drvslam {
 namespace {
 
@@ -24,6 +22,11 @@ constexpr double kChiSquare6Median = 5.3481;
 // from the measurement.
 constexpr double kInnovationGate = 22.458;
 constexpr int kRejectionsToRestart = 3;
+// Frames skipped while tracking was busy (--realtime on a slow or loaded machine) leave gaps of
+// several frames, which the constant-velocity prediction bridges, its noise growing with the gap.
+// After half a second of white acceleration (about 1 m/s^2) the velocity is uncertain by about
+// 0.5 m/s, no better than unknown: a longer gap starts the filter afresh.
+constexpr double kMaxGapS = 0.5;
 // The inflation is measured over this many seconds of frames, once this many samples exist.
 constexpr double kInflationWindowS = 3.0;
 constexpr std::size_t kMinInflationSamples = 5;
@@ -82,7 +85,7 @@ void CausalPoseFilter::Rebase() {
 CausalPose CausalPoseFilter::Update(double timestamp, const SE3& measured_T_wc,
                                     const Matrix6d& covariance) {
   const double dt = timestamp - timestamp_;
-  if (started_ && !rebase_ && (!(dt > 0) || dt > kMaxGapFrames * options_.frame_interval_s)) {
+  if (started_ && !rebase_ && (!(dt > 0) || dt > kMaxGapS)) {
     Forget();
   }
   MeasureInflation(measured_T_wc, covariance, timestamp);

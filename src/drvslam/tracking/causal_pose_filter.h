@@ -62,8 +62,8 @@ class CausalPoseFilter {
 
   // A tracked frame: its pose and that pose's covariance (MeasurementCovariance; zero: no
   // information, the estimate is then the prediction, or the pose itself on a first frame).
-  // Starts afresh at the first frame, after Forget, and after a gap of more than
-  // kMaxGapFrames frame intervals.
+  // Starts afresh at the first frame, after Forget, and after a gap of more than half a second
+  // (frames skipped while tracking was busy are bridged by the prediction).
   CausalPose Update(double timestamp, const SE3& measured_T_wc, const Matrix6d& covariance);
   // Tracking was lost (or the pose was found again by relocalization): no motion is known
   // across it; the next Update starts afresh.
