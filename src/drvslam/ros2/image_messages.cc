@@ -24,6 +24,11 @@ cv::Mat BorrowPixels(const sensor_msgs_msg_dds__Image_& image, int type, const s
     Reject(topic, "step " + std::to_string(image.step) + " is shorter than a row (" +
                       std::to_string(row_bytes) + " bytes)");
   }
+  // cv::Mat (and any reader of the rows) needs whole elements per row.
+  if (image.step % CV_ELEM_SIZE1(type) != 0) {
+    Reject(topic, "step " + std::to_string(image.step) + " is not a multiple of the " +
+                      std::to_string(CV_ELEM_SIZE1(type)) + "-byte element");
+  }
   const std::size_t needed = static_cast<std::size_t>(image.step) * image.height;
   if (image.data._length < needed) {
     Reject(topic, "data holds " + std::to_string(image.data._length) + " bytes, " +
