@@ -108,28 +108,52 @@ function(drvslam_check_module_graph)
   endforeach()
 endfunction()
 
-# drvslam_test(NAME SOURCES ... DEPS ...): one GoogleTest executable registered with CTest.
+# drvslam_test(NAME SOURCES ... DEPS ... [TIMEOUT s] [EACH_TEST]): one GoogleTest executable
+# registered with CTest as one test, the whole binary in one process. EACH_TEST registers each of
+# its GoogleTest tests as a CTest test of its own instead (gtest_discover_tests), so that CTest
+# spreads a binary of long runs (the integration tests) over the cores. A unit-test binary holds
+# many short tests: one process each cost 0.1-0.5 s of start-up apiece (loading OpenCV, Open3D,
+# Ceres), 200 CPU-s of the 1,000 a CTest run took, and a listing run of every binary at build time.
 function(drvslam_test name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "EACH_TEST" "TIMEOUT" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_compile_options(${name} PRIVATE -Wall -Wextra)
-  # Shared test helpers (tests/test_support/) are included as "test_support/...".
+  drvslam_test_compile_settings(${name})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 600)
+  endif()
+  # Rendered synthetic sequences are shared by the test processes
+  # (tests/integration/synth_render_cache.h).
+  set(test_environment "DRVSLAM_TEST_SYNTH_CACHE=${CMAKE_BINARY_DIR}/test-synth-cache")
+  if(ARG_EACH_TEST)
+    # Long runs first (a CTest COST; a fresh build has no timings of earlier runs to order by),
+    # so that the short unit-test binaries fill the cores at the end rather than one long run
+    # holding the last core alone. The time limit stands for the cost.
+    include(GoogleTest)
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${ARG_TIMEOUT}
+      COST ${ARG_TIMEOUT} ENVIRONMENT "${test_environment}")
+  else()
+    add_test(NAME ${name} COMMAND ${name})
+    set_tests_properties(${name} PROPERTIES TIMEOUT ${ARG_TIMEOUT}
+      ENVIRONMENT "${test_environment}")
+  endif()
+endfunction()
+
+# drvslam_test_compile_settings(TARGET): what every test source is compiled with: warnings, the
+# shared test helpers (tests/test_support/, included as "test_support/..."), the paths the tests
+# resolve their inputs against. Test code is compiled at -O1 whatever the build type: it drives
+# the libraries (compiled as the build type says) and does little work of its own, and -O3 made
+# the test sources a third slower to compile (tests/tools/eval: 34 CPU-s at -O3, 26 at -O1).
+# Optimization levels do not change floating-point results here (no -ffast-math, no FMA).
+function(drvslam_test_compile_settings name)
+  target_compile_options(${name} PRIVATE -Wall -Wextra -O1)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_compile_definitions(${name} PRIVATE
     DRVSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     DRVSLAM_SHARED_DIR="${DRVSLAM_SHARED_DIR}"
     DRVSLAM_OPENCV_DATA_DIR="${DRVSLAM_OPENCV_DATA_DIR}"
     DRVSLAM_CLI="$<TARGET_FILE:drvslam_cli>")
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
-  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
-  if(NOT ARG_TIMEOUT)
-    set(ARG_TIMEOUT 600)
-  endif()
-  include(GoogleTest)
-  # Rendered synthetic sequences are shared by the test processes
-  # (tests/integration/synth_render_cache.h).
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${ARG_TIMEOUT}
-    ENVIRONMENT "DRVSLAM_TEST_SYNTH_CACHE=${CMAKE_BINARY_DIR}/test-synth-cache")
 endfunction()
 
 # drvslam_test_uses_cli(NAME): the test runs the built CLI (DRVSLAM_CLI), at least to render its

@@ -4,7 +4,8 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config git ninja-build
+  build-essential cmake pkg-config git ninja-build mold
+  clang-16 libclang-rt-16-dev libfuzzer-16-dev
   libeigen3-dev libopencv-dev libceres-dev libopen3d-dev liboctomap-dev
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev

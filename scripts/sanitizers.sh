@@ -8,14 +8,15 @@
 # whose code paths other tests cover; each one says why.
 #
 # Kept cheap for a 2-core CI machine (cmake/DrvslamSanitizers.cmake): only the chosen test
-# binaries and the CLI they run are built, at -O1 -g1 as a unity build, without the benchmarks or
-# the Python module; the release build's default vocabulary (build/) is copied instead of being
-# trained again. Binaries run two at a time. Every report of every process, the CLI runs the
-# tests start included, goes to a log file: any report fails the job (exit status 1) and is
-# printed. Undefined behaviour stops the program (-fno-sanitize-recover). The address job from
-# scratch in CI on 2026-11-28 (2 cores, no ccache): build 1,578 s (3,105 CPU-s), tests 542 s
-# (1,038 CPU-s). Both need the release build first (its vocabulary, and its CLI renders the
-# integration tests' sequences).
+# binaries and the CLI they run are built, at -O1 -g1 as a unity build, with clang-16 (Debian's,
+# which scripts/install-deps.sh installs), without the benchmarks or the Python module; the
+# release build's default vocabulary (build/) is copied instead of being trained again. clang
+# compiles these instrumented trees in about half GCC 12's time (drvslam_optim's batch: 58 CPU-s
+# against 112 with ASan), and the fuzz targets (fuzz/) need it. Binaries run two at a time.
+# Every report of every process, the CLI runs the tests start included, goes to a log file: any
+# report fails the job (exit status 1) and is printed. Undefined behaviour stops the program
+# (-fno-sanitize-recover). Both need the release build first (its vocabulary, and its CLI
+# renders the integration tests' sequences).
 # Third-party false positives go in scripts/sanitizers/{lsan,tsan}.supp, each with its reason.
 # Options given in ASAN_OPTIONS, UBSAN_OPTIONS or TSAN_OPTIONS come last and win (for example
 # ASAN_OPTIONS=detect_leaks=0 to look past a known leak).
@@ -125,8 +126,8 @@ case "$kind" in
     # so every access TSan checks is ordered by our own, instrumented, synchronization. Threaded
     # SLAM runs set OpenCV to one thread themselves (ApplyOpenCvThreadBudget).
     export OPENCV_FOR_THREADS_NUM=1
-    # Without address randomization: GCC 12's TSan does not know the memory layout kernels with
-    # more mmap randomization bits give ("unexpected memory mapping").
+    # Without address randomization: the TSan runtimes of GCC 12 and clang 16 do not know the
+    # memory layout kernels with more mmap randomization bits give ("unexpected memory mapping").
     run_prefix=(setarch "$(uname -m)" -R)
     ;;
   *)
@@ -168,8 +169,16 @@ fi
 
 # Ninja when installed (install-deps.sh installs it) and the folder is new: it schedules the whole
 # graph at once; make also builds the one target below in parallel, only less evenly.
-if command -v ninja >/dev/null && [ ! -e "$build/CMakeCache.txt" ]; then
-  generator=(-G Ninja)
+compiler=()
+if [ ! -e "$build/CMakeCache.txt" ]; then
+  if command -v ninja >/dev/null; then generator=(-G Ninja); fi
+  # A folder keeps the compiler it was configured with.
+  if ! command -v clang++-16 >/dev/null; then
+    echo "error: the sanitizer jobs build with clang-16, which is missing:" \
+      "run scripts/install-deps.sh" >&2
+    exit 2
+  fi
+  compiler=(-DCMAKE_C_COMPILER=clang-16 -DCMAKE_CXX_COMPILER=clang++-16)
 fi
 # The address job's tests run the instrumented CLI (end-to-end runs, `drvslam ros2`); the thread
 # job's only render their sequences with it, which the release CLI does (above), so that job
@@ -190,7 +199,7 @@ for entry in "${targets[@]}"; do build_targets+=("${entry%%:*}"); done
 [ "$train_vocabulary" = ON ] && build_targets+=(drvslam_default_vocab)
 # All of them as one target (drvslam_sanitizer_set): make takes targets named on one command
 # line one after another.
-cmake -S . -B "$build" ${generator[@]+"${generator[@]}"} \
+cmake -S . -B "$build" ${generator[@]+"${generator[@]}"} ${compiler[@]+"${compiler[@]}"} \
   -DDRVSLAM_SANITIZE="$kind" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
   -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \

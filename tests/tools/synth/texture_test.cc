@@ -111,7 +111,7 @@ TEST(TextureTest, MipmapsAndSampling) {
   EXPECT_TRUE(cutout.HasTransparency());
   EXPECT_FALSE(cutout.Opaque(0.01f, 0.01f));
   EXPECT_TRUE(cutout.Opaque(0.5f, 0.5f));
-  EXPECT_THROW(Texture(cv::Mat()), Error);
+  EXPECT_THROW(static_cast<void>(Texture(cv::Mat())), Error);
   EXPECT_THROW(Texture(cv::Mat(4, 4, CV_32FC1)), Error);
 }
 

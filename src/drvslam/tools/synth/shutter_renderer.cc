@@ -140,7 +140,10 @@ void ShutterRenderer::RenderGlobalDepth(const TriangleList& statics,
 void ShutterRenderer::RenderBand(int row_begin, int row_end, double offset,
                                  const TriangleList& statics, const std::vector<Texture>& textures,
                                  const SceneAt& scene_at, bool parallel, RenderBuffers* out) const {
-  const auto [canvas_begin, canvas_end] = distortion_.CanvasRows(row_begin, row_end);
+  // Named variables, not a structured binding: C++17 lambdas may not capture those.
+  const std::pair<int, int> canvas_rows = distortion_.CanvasRows(row_begin, row_end);
+  const int canvas_begin = canvas_rows.first;
+  const int canvas_end = canvas_rows.second;
   const int canvas_width = distortion_.Canvas().width;
   const auto render_at = [&](double time_offset, RenderBuffers* buffers) {
     SE3 T_cw;
