@@ -79,6 +79,8 @@ case "$kind" in
       tracking_trajectory_smoother_test tracking_causal_pose_filter_test
       tracking_feature_budget_test tracking_keyframe_occlusion_test tracking_rolling_shutter_test
       occupancy_grid_test ros2_msgs_test synth_render_cache_test
+      # The parsers of outside input on their fuzz corpora and the inputs that once found a bug.
+      fuzz_regression_test
     )
     export ASAN_OPTIONS="detect_leaks=1:log_path=REPORTS/asan:${ASAN_OPTIONS:-}"
     # OpenCV's gPhoto2 camera backend off. cv::VideoCapture, handed a file no file backend reads
@@ -185,6 +187,13 @@ fi
 # builds no CLI (DRVSLAM_TESTS_WITHOUT_CLI: nor the ROS 2 node and apps/ only the CLI links).
 build_targets=()
 tests_without_cli=OFF
+# The address tree also builds the libFuzzer targets (fuzz/): their instrumented modules are the
+# ones these tests run, so one tree serves both. scripts/fuzz.sh runs them (.ci/run after this).
+fuzzers=OFF
+if [ "$kind" = address ]; then
+  fuzzers=ON
+  build_targets+=(drvslam_fuzzers)
+fi
 if [ "$kind" = thread ]; then
   if [ -z "${DRVSLAM_TEST_SYNTH_CLI:-}" ]; then
     echo "error: the thread job renders its sequences with the release CLI build/bin/drvslam," \
@@ -203,7 +212,7 @@ cmake -S . -B "$build" ${generator[@]+"${generator[@]}"} ${compiler[@]+"${compil
   -DDRVSLAM_SANITIZE="$kind" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
   -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
-  -DDRVSLAM_BUILD_BENCH=OFF -DDRVSLAM_BUILD_PYTHON=OFF \
+  -DDRVSLAM_BUILD_BENCH=OFF -DDRVSLAM_BUILD_PYTHON=OFF -DDRVSLAM_BUILD_FUZZERS="$fuzzers" \
   -DDRVSLAM_BUILD_DEFAULT_VOCABULARY="$train_vocabulary" -DDRVSLAM_TESTS_WITHOUT_CLI="$tests_without_cli" \
   -DDRVSLAM_SANITIZER_TARGETS="$(IFS=';'; echo "${build_targets[*]}")" >/dev/null
 

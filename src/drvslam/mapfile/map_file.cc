@@ -289,13 +289,16 @@ void CheckReferences(const MapFileContents& m, const std::string& path) {
     }
     if (k.id >= m.next_keyframe_id) fail("keyframe id " + std::to_string(k.id) + " out of range");
     for (const cv::KeyPoint& kp : k.keypoints) {
-      // Keypoints are saved as extracted, inside the image; one far outside would overflow the
-      // keyframe's feature grid when the map is restored.
-      if (!(kp.pt.x >= 0.0f && kp.pt.x <= m.camera.width && kp.pt.y >= 0.0f &&
-            kp.pt.y <= m.camera.height)) {
+      // Keypoints are saved inside the image or near it (a rolling-shutter correction moves
+      // one near a border by a few pixels); one far outside would overflow the keyframe's
+      // feature grid when the map is restored. An image's size on every side is the bound.
+      const float width = static_cast<float>(m.camera.width);
+      const float height = static_cast<float>(m.camera.height);
+      if (!(kp.pt.x >= -width && kp.pt.x <= 2.0f * width && kp.pt.y >= -height &&
+            kp.pt.y <= 2.0f * height)) {
         fail("keyframe " + std::to_string(k.id) + ": keypoint at (" + std::to_string(kp.pt.x) +
              ", " + std::to_string(kp.pt.y) + ") outside the " + std::to_string(m.camera.width) +
-             "x" + std::to_string(m.camera.height) + " image");
+             "x" + std::to_string(m.camera.height) + " image by more than its size");
       }
       if (kp.octave < 0 || kp.octave >= m.pyramid_levels) {
         fail("keyframe " + std::to_string(k.id) + ": keypoint level " + std::to_string(kp.octave) +
