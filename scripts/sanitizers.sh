@@ -8,11 +8,12 @@
 # whose code paths other tests cover; each one says why.
 #
 # Kept cheap for a 2-core CI machine (cmake/DrvslamSanitizers.cmake): only the chosen test
-# binaries and the CLI they run are built, at -O1 -g1 as a unity build, with clang-16 (Debian's,
-# which scripts/install-deps.sh installs), without the benchmarks or the Python module; the
-# release build's default vocabulary (build/) is copied instead of being trained again. clang
-# compiles these instrumented trees in about half GCC 12's time (drvslam_optim's batch: 58 CPU-s
-# against 112 with ASan), and the fuzz targets (fuzz/) need it. Binaries run two at a time.
+# binaries and the CLI they run are built, at -O1 -g1 as a unity build, without the benchmarks or
+# the Python module; the release build's default vocabulary (build/) is copied instead of being
+# trained again. The address tree is compiled with clang-16 (Debian's, which
+# scripts/install-deps.sh installs): it compiles instrumented code in about half GCC 12's time
+# (drvslam_optim's batch: 58 CPU-s against 112 with ASan), and the fuzz targets (fuzz/) need it.
+# Binaries run two at a time.
 # Every report of every process, the CLI runs the tests start included, goes to a log file: any
 # report fails the job (exit status 1) and is printed. Undefined behaviour stops the program
 # (-fno-sanitize-recover). Both need the release build first (its vocabulary, and its CLI
@@ -128,8 +129,8 @@ case "$kind" in
     # so every access TSan checks is ordered by our own, instrumented, synchronization. Threaded
     # SLAM runs set OpenCV to one thread themselves (ApplyOpenCvThreadBudget).
     export OPENCV_FOR_THREADS_NUM=1
-    # Without address randomization: the TSan runtimes of GCC 12 and clang 16 do not know the
-    # memory layout kernels with more mmap randomization bits give ("unexpected memory mapping").
+    # Without address randomization: GCC 12's TSan does not know the memory layout kernels with
+    # more mmap randomization bits give ("unexpected memory mapping").
     run_prefix=(setarch "$(uname -m)" -R)
     ;;
   *)
@@ -171,16 +172,21 @@ fi
 
 # Ninja when installed (install-deps.sh installs it) and the folder is new: it schedules the whole
 # graph at once; make also builds the one target below in parallel, only less evenly.
+# The address tree is compiled by clang-16 (the fuzzers need it, and it compiles instrumented
+# code in half GCC's time); the thread tree by the default compiler, GCC, whose TSan runs of
+# these tests are the ones examined so far (scripts/sanitizers/tsan.supp). A folder keeps the
+# compiler it was configured with.
 compiler=()
 if [ ! -e "$build/CMakeCache.txt" ]; then
   if command -v ninja >/dev/null; then generator=(-G Ninja); fi
-  # A folder keeps the compiler it was configured with.
-  if ! command -v clang++-16 >/dev/null; then
-    echo "error: the sanitizer jobs build with clang-16, which is missing:" \
-      "run scripts/install-deps.sh" >&2
-    exit 2
+  if [ "$kind" = address ]; then
+    if ! command -v clang++-16 >/dev/null; then
+      echo "error: the address job builds with clang-16, which is missing:" \
+        "run scripts/install-deps.sh" >&2
+      exit 2
+    fi
+    compiler=(-DCMAKE_C_COMPILER=clang-16 -DCMAKE_CXX_COMPILER=clang++-16)
   fi
-  compiler=(-DCMAKE_C_COMPILER=clang-16 -DCMAKE_CXX_COMPILER=clang++-16)
 fi
 # The address job's tests run the instrumented CLI (end-to-end runs, `drvslam ros2`); the thread
 # job's only render their sequences with it, which the release CLI does (above), so that job
