@@ -314,7 +314,11 @@ TrackResult System::Impl::Track(const cv::Mat& bgr, const cv::Mat& depth_in, dou
   // Dynamic objects: segmentation starts before extraction (on its own thread) and may raise
   // the feature target; with Dynamic.skipMovingExtraction no features are extracted on objects
   // believed moving; the frame's masks then take the moving features out before tracking.
-  int feature_target = dynamic ? dynamic->BeginFrame(timestamp, bgr, tracker.KeyFrameLikely()) : 0;
+  // A frame that would start the map may wait for its own masks (--realtime): the first map
+  // must not take in the people in view.
+  const bool starts_map = tracker.State() == TrackingState::kNotInitialized;
+  int feature_target =
+      dynamic ? dynamic->BeginFrame(timestamp, bgr, tracker.KeyFrameLikely(), starts_map) : 0;
   if (feature_budget) {
     feature_target = feature_budget->TargetFor(
         timestamp, feature_target > 0 ? feature_target : settings.orb.n_features,

@@ -77,6 +77,38 @@ TEST_F(DynamicFrontEndTest, RealtimeLikelyKeyFramesWaitForTheirOwnMasksOthersNev
   EXPECT_EQ(stats.keyframes_own_masks, 1u);
 }
 
+TEST_F(DynamicFrontEndTest, RealtimeAFrameStartingAMapWaitsForItsOwnMasksWithinTheBound) {
+  // Before the network's first pass there is no expected pass time, so a likely keyframe would
+  // not wait; a frame that would start a map does, up to Segmentation.mapStartWaitMs. With a
+  // 100 ms network and a 1 s bound it gets its own masks. With a 20 ms bound (the pass held on
+  // the network until the test ends) it gives up after the bound; with 0 it never waits. It
+  // waits in BeginFrame, before extraction (timed as map_start_wait).
+  const Sequence sequence = Render(1, false, nullptr, [](int) { return 0.0; });
+  for (const double bound_ms : {1000.0, 20.0, 0.0}) {
+    const bool held = bound_ms < 100.0;
+    DynamicFrontEndConfig config = RealtimeConfig(sequence, 100, 0.0);
+    const auto network = std::make_shared<HoldingSegmenter>(
+        sequence.masks, 100, held ? std::set<std::size_t>{0} : std::set<std::size_t>{});
+    config.segmenter = network;
+    config.segmentation.map_start_wait_ms = bound_ms;
+    StageTimings timings;
+    DynamicFrontEnd stage(config, 1000, map_, &timings);
+    const OpenAtExit<HoldingSegmenter> release_at_exit(*network);
+    stage.BeginFrame(0.0, sequence.bgr[0], /*keyframe_likely=*/true, /*starts_map=*/true);
+    stage.Filter(Extract(sequence, 0), sequence.bgr[0], sequence.images[0].depth);
+    EXPECT_EQ(stage.LastReport().own_masks, !held) << bound_ms;
+    EXPECT_EQ(stage.LastReport().instances.size(), held ? 0u : 1u) << bound_ms;
+    stage.NoteKeyFrame(KeyFrameIf(true, 0));
+    const DynamicStats stats = stage.Stats();
+    EXPECT_EQ(stats.map_starts, 1u);
+    EXPECT_EQ(stats.map_starts_own_masks, held ? 0u : 1u);
+    EXPECT_EQ(stats.keyframe_waits, 0u);  // the map start's wait is not a keyframe wait
+    if (bound_ms == 20.0) {
+      EXPECT_GE(timings.Summaries().at("map_start_wait").max_ms, 19.0);
+    }
+  }
+}
+
 TEST_F(DynamicFrontEndTest, RealtimeNetworkBacksOffWhenFramesAreSkipped) {
   // Frames 0-7 at 30 Hz, each segmented before the next comes; frame 8 is skipped, so frame 9
   // arrives two periods after frame 7 and is not handed to the network (it rests one pass).

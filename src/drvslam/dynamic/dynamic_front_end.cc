@@ -176,7 +176,8 @@ void DynamicFrontEnd::Record(const char* stage, double ms) {
   if (timings_ != nullptr) timings_->Record(stage, ms);
 }
 
-int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr, bool keyframe_likely) {
+int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr, bool keyframe_likely,
+                                bool starts_map) {
   if (begun_) throw Error("DynamicFrontEnd: BeginFrame called twice without Filter");
   begun_ = true;
   if (async_ && (!pacer_ || pacer_->ShouldSubmit(timestamp, async_->TypicalPassMs()))) {
@@ -190,9 +191,26 @@ int DynamicFrontEnd::BeginFrame(double timestamp, const cv::Mat& bgr, bool keyfr
   report_.frame_index = next_index_;
   report_.timestamp = timestamp;
   report_.keyframe_likely = keyframe_likely;
-  report_.feature_target = BoostedFeatureTarget(base_features_, previous_share_, config_.options);
+  report_.starts_map = starts_map;
+  const double share =
+      starts_map ? std::max(previous_share_, AwaitMapStartMasks(bgr.size())) : previous_share_;
+  report_.feature_target = BoostedFeatureTarget(base_features_, share, config_.options);
   if (report_.feature_target != base_features_) ++stats_.frames_boosted;
   return report_.feature_target;
+}
+
+double DynamicFrontEnd::AwaitMapStartMasks(const cv::Size& size) {
+  const double bound_ms = config_.segmentation.map_start_wait_ms;
+  if (!config_.realtime || !async_ || bound_ms <= 0.0) return 0.0;
+  const Stopwatch watch;
+  const std::shared_ptr<const SegmentedFrame> own = async_->WaitFor(next_index_, bound_ms);
+  Record("map_start_wait", watch.ElapsedMs());
+  if (!own || own->segmentation.image_size != size) return 0.0;
+  const std::vector<Instance>& instances = own->segmentation.instances;
+  for (const Instance& instance : instances) {
+    if (instance.mask.size() != size || instance.mask.type() != CV_8UC1) return 0.0;
+  }
+  return CoveredShare(instances, PotentiallyMoving(instances), size);
 }
 
 cv::Mat DynamicFrontEnd::MovingSkipMask() {
@@ -243,8 +261,10 @@ void DynamicFrontEnd::NoteKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
   frames_vetoed_ = 0;
   ++stats_.keyframes;
   if (report_.keyframe_likely) ++stats_.keyframes_expected;
+  if (report_.starts_map) ++stats_.map_starts;
   if (report_.own_masks) {
     ++stats_.keyframes_own_masks;
+    if (report_.starts_map) ++stats_.map_starts_own_masks;
   } else if (config_.realtime && async_ && config_.segmentation.late_keyframe_masks) {
     async_->Keep(report_.frame_index);
     late_keyframes_.Expect(report_.frame_index, keyframe);

@@ -21,9 +21,15 @@
 // Segmentation.keyframeWaitMs for its own masks; other frames never wait. Chosen over segmenting
 // keyframes after their creation because a keyframe's features become map points at creation:
 // masks that arrive later could only remove them again, while a short wait keeps moving features
-// out of the map in the first place, at a bounded cost to the frame. Older masks are carried to
+// out of the map in the first place, at a bounded cost to the frame. A frame that would start a
+// map (told to BeginFrame) waits in BeginFrame, before extraction, at most
+// Segmentation.mapStartWaitMs for its own masks, however long the network is expected to take:
+// its features are the whole first map, a map started without masks took in the people in view,
+// and the masks' share of people raises the frame's feature target, so that it keeps enough
+// features to start the map once theirs are removed. Older masks are carried to
 // the frame object by object along the flow tracks (Segmentation.propagation objects). Stage
 // timings recorded (ms per frame): segmentation (the network's time for the frame),
+// map_start_wait (a map's first frame waiting for its masks),
 // segmentation_wait (how long tracking waited for masks, keyframe waits included, or carried
 // them), motion_consistency (flow, scene model, reprojection test), removal (IDs, motion states,
 // culling, removal, filtering). Works without a segmenter too (geometry only: moving points
@@ -104,6 +110,7 @@ struct DynamicFrameReport {
   bool large_share = false;
   int feature_target = 0;
   bool keyframe_likely = false;  // tracking expected this frame to become a keyframe
+  bool starts_map = false;       // tracking has no map: the frame would start one
   bool own_masks = false;        // the frame's own masks (not carried ones) were used
   // --realtime: the masks of potentially-moving objects are older than
   // Segmentation.carryFrames (still carried, or expired), so those movers may have left them
@@ -162,6 +169,10 @@ struct DynamicStats {
   std::size_t keyframes_own_masks = 0;
   std::size_t keyframe_waits = 0;
   std::size_t keyframe_waits_fresh = 0;
+  // Maps started (initial keyframes, one per reset after), and those started with the frame's
+  // own masks (--realtime: Segmentation.mapStartWaitMs; always, outside it).
+  std::size_t map_starts = 0;
+  std::size_t map_starts_own_masks = 0;
   // Keyframes made without their own masks (--realtime, Segmentation.lateKeyFrameMasks): those
   // whose masks came later while the keyframe was still in the map, those whose never came, and
   // the points culled by the late masks.
@@ -190,8 +201,11 @@ class DynamicFrontEnd {
 
   // Starts segmenting `bgr`; returns the feature target for its extraction. keyframe_likely:
   // tracking expects the frame to become a keyframe (with --realtime it may then wait
-  // Segmentation.keyframeWaitMs for its own masks).
-  int BeginFrame(double timestamp, const cv::Mat& bgr, bool keyframe_likely = false);
+  // Segmentation.keyframeWaitMs for its own masks). starts_map: tracking has no map, so the
+  // frame would start one (with --realtime it then waits here, before extraction, at most
+  // Segmentation.mapStartWaitMs for its own masks, and their share of people raises its target).
+  int BeginFrame(double timestamp, const cv::Mat& bgr, bool keyframe_likely = false,
+                 bool starts_map = false);
   // After BeginFrame, before extraction: CV_8UC1 of the image's size, 255 where no features
   // should be extracted: the newest masks of the objects believed moving (this frame's own masks
   // when they are ready, matched to the last frame's moving objects by overlap, else the last
@@ -309,8 +323,15 @@ class DynamicFrontEnd {
                      std::shared_ptr<const FrameFeatures> extracted, const cv::Mat& depth,
                      double share);
   Segmentation MasksFor(double timestamp, const cv::Mat& bgr);
+  // --realtime, a frame that would start a map: waits up to Segmentation.mapStartWaitMs for its
+  // own masks, before extraction, and returns the image share of their potentially-moving
+  // objects (0 without them), so that the frame's feature target is raised as a later frame's
+  // would be: a first frame whose people's features are removed must still keep
+  // Tracking.minInitialPoints features with depth to start the map.
+  double AwaitMapStartMasks(const cv::Size& size);
   // Realtime keyframe priority: a likely keyframe waits up to Segmentation.keyframeWaitMs for
-  // its own masks when the network is on its image or next to be; notes whether it has them.
+  // its own masks when the network is on its image or next to be (a frame that would start a
+  // map waited in BeginFrame already). Notes whether the frame has them.
   void AwaitKeyFrameMasks();
   // Per instance, whether its class may move (all false without a segmenter's class table).
   std::vector<bool> PotentiallyMoving(const std::vector<Instance>& instances) const;

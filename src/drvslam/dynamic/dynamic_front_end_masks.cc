@@ -50,11 +50,12 @@ Segmentation DynamicFrontEnd::MasksFor(double timestamp, const cv::Mat& bgr) {
 }
 
 void DynamicFrontEnd::AwaitKeyFrameMasks() {
-  // Only when the network is expected to finish this very image within the bound: a wait that
-  // cannot bring the frame's own masks would only delay tracking (and make the camera's next
-  // frame replace the one after it).
+  // A frame that would start a map waited in BeginFrame (AwaitMapStartMasks). Others only when
+  // the network is expected to finish this very image within the bound: a wait that cannot
+  // bring the frame's own masks would only delay tracking (and make the camera's next frame
+  // replace the one after it).
   const double wait_ms = config_.segmentation.keyframe_wait_ms;
-  if (report_.keyframe_likely && wait_ms > 0.0) {
+  if (report_.keyframe_likely && !report_.starts_map && wait_ms > 0.0) {
     const std::optional<double> expected_ms = async_->ExpectedWaitMs(next_index_);
     if (expected_ms && *expected_ms <= wait_ms) {
       ++stats_.keyframe_waits;

@@ -43,6 +43,8 @@ nlohmann::json DynamicStatsJson(const DynamicStats& s) {
             {"own_masks", s.keyframes_own_masks},
             {"waits", s.keyframe_waits},
             {"waits_fresh", s.keyframe_waits_fresh},
+            {"map_starts", s.map_starts},
+            {"map_starts_own_masks", s.map_starts_own_masks},
             {"late_masks", s.keyframes_late_masks},
             {"late_masks_missed", s.keyframes_late_missed},
             {"late_points_culled", s.late_points_culled},

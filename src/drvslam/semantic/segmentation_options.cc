@@ -69,6 +69,9 @@ const OptionTable<SegmentationOptions>& SegmentationOptionTable() {
         .Real("keyframeWaitMs", &S::keyframe_wait_ms, Bounds::In(0, 1000).Note("ms"),
               "--realtime: a likely keyframe waits at most this long for masks due by then (0 = "
               "never).")
+        .Real("mapStartWaitMs", &S::map_start_wait_ms, Bounds::In(0, 10000).Note("ms"),
+              "--realtime: a frame that would start a map waits at most this long for its masks "
+              "(0 = never).")
         .Bool("lateKeyFrameMasks", &S::late_keyframe_masks,
               "--realtime: a keyframe made without its masks has them segmented later, and its "
               "points on potentially-moving objects are then culled.")

@@ -53,6 +53,14 @@ struct SegmentationOptions {
   // makes the next camera frame replace the one after it: with 50 ms a 30 Hz run skipped 6-19
   // frames of 300, with 15 ms 5-8 (3 runs each). 0 = keyframes never wait.
   double keyframe_wait_ms = 15.0;
+  // Segmentation.mapStartWaitMs (--realtime only): a frame that would start a map (the first
+  // one, or the first after a reset) waits at most this long for its own masks, whatever the
+  // network's expected time. Its features become the whole first map: started without masks,
+  // the map took in the people in view and tracking followed them (real Bonn crowd dev half
+  // started at frame 250: 479 of its first frame's 1000 features lie on people). It waits before
+  // extraction, so the masks' share of people raises the frame's feature target. Once per map,
+  // so the bound can cover a first forward pass on a loaded machine; 0 = never waits.
+  double map_start_wait_ms = 200.0;
   // Segmentation.lateKeyFrameMasks (--realtime only): a keyframe made without its own masks
   // keeps its image queued for the network, and when the masks come the points it created on
   // potentially-moving objects are culled (dynamic/late_keyframe_masks.h).
