@@ -15,9 +15,10 @@
 # TARGET: ros2_image map_file settings tum_text vocabulary onnx_metadata (default: every one the
 # build has). Every run has -rss_limit_mb=1024 -malloc_limit_mb=512 -timeout=30 and the target's
 # dictionary (fuzz/dict/<target>.dict), so an unbounded allocation, a leak, a hang or a crash is a
-# finding. The time limit is wall time: 30 s, as a 20-minute campaign beside a build (load 10
-# on 2 cores) stopped a settings input at 12 s that takes 0.6 CPU-s. The corpora are copied to a scratch folder (fuzz-out/ in the build folder, with each
-# target's log); new inputs found stay there, git's files are not changed.
+# finding. The time limit is wall time: 30 s, as a campaign beside builds (load 10 on 2 cores)
+# stopped a settings input at 12 s that takes 0.6 CPU-s. The corpora are copied to a scratch
+# folder (fuzz-out/ in the build folder, with each target's log); new inputs found stay there,
+# git's files are not changed.
 # Exit status 1 when a target found something: the input is printed (fuzz-out/<target>/crash-*
 # etc.); replay it with `BUILD/bin/<target>_fuzzer FILE`, fix the parser, and keep the input in
 # fuzz/regressions/<target>/ (fuzz_regression_test replays it in every build).
