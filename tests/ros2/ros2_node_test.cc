@@ -31,6 +31,7 @@
 #include "drvslam/ros2/dds_entities.h"
 #include "drvslam/ros2/image_messages.h"
 #include "integration/synthesized_sequence.h"
+#include "test_support/sanitizer_build.h"
 
 namespace drvslam::ros2 {
 namespace {
@@ -59,11 +60,11 @@ constexpr const char* kLoopbackConfig =
 // machine it tracked 233 of 240 frames, but ctest runs other tests beside it, and under a
 // sanitizer it runs many times slower. The share is a floor against a node that stalls, not a
 // speed figure.
-#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
-constexpr double kMinPublishedShare = 0.05;
-#else
-constexpr double kMinPublishedShare = 0.3;
-#endif
+constexpr double kMinPublishedShare = test::kSanitizedBuild ? 0.05 : 0.3;
+// The causal filter starts afresh, with no velocity, after a gap of more than half a second
+// between tracked frames (tracking/causal_pose_filter.cc): twists are compared where the node
+// tracked the two frames before within that gap of each other.
+constexpr std::int64_t kFilterRestartGapNs = 500'000'000;
 
 std::int64_t NowNanoseconds() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(SystemClock::now().time_since_epoch())
@@ -322,7 +323,14 @@ TEST(Ros2NodeTest, TracksImageTopicsAndPublishesPosesTfAndGrid) {
   const Trajectory& truth = dataset.GroundTruth();
   double linear_sum = 0.0, angular_sum = 0.0, speed_sum = 0.0;
   std::size_t compared = 0;
+  std::int64_t previous_stamp = 0, second_previous_stamp = 0;
   for (const auto& [stamp, twist] : twists) {
+    const bool filter_running = second_previous_stamp > 0 &&
+                                stamp - previous_stamp <= kFilterRestartGapNs &&
+                                previous_stamp - second_previous_stamp <= kFilterRestartGapNs;
+    second_previous_stamp = previous_stamp;
+    previous_stamp = stamp;
+    if (!filter_running) continue;
     const double t = sequence_time(stamp * 1e-9);
     const auto at = std::lower_bound(
         truth.begin(), truth.end(), t,
@@ -341,18 +349,24 @@ TEST(Ros2NodeTest, TracksImageTopicsAndPublishesPosesTfAndGrid) {
     speed_sum += linear.squaredNorm();
     ++compared;
   }
-  ASSERT_GT(compared, 0u);
-  const double linear_rmse = std::sqrt(linear_sum / compared);
-  const double angular_rmse = std::sqrt(angular_sum / compared);
-  std::printf(
-      "twist against the ground truth's central differences over %zu frames: linear RMSE %.3f "
-      "m/s (the camera's rms speed %.3f m/s), angular RMSE %.3f rad/s\n",
-      compared, linear_rmse, std::sqrt(speed_sum / compared), angular_rmse);
   EXPECT_EQ(with_pose_covariance, latency_ms.size() - 1)
       << "every odometry but the map's origin (exact by definition) carries a pose covariance";
   EXPECT_EQ(with_twist_covariance, latency_ms.size());
-  EXPECT_LT(linear_rmse, kMaxTwistLinearRmse);
-  EXPECT_LT(angular_rmse, kMaxTwistAngularRmse);
+  if (compared == 0 && test::kSanitizedBuild) {
+    // A sanitized node on a loaded machine may track no three frames within the gap; the
+    // ordinary build tracks most frames and always compares.
+    std::printf("twist not compared: no two successive gaps under 0.5 s between tracked frames\n");
+  } else {
+    ASSERT_GT(compared, 0u);
+    const double linear_rmse = std::sqrt(linear_sum / compared);
+    const double angular_rmse = std::sqrt(angular_sum / compared);
+    std::printf(
+        "twist against the ground truth's central differences over %zu frames: linear RMSE %.3f "
+        "m/s (the camera's rms speed %.3f m/s), angular RMSE %.3f rad/s\n",
+        compared, linear_rmse, std::sqrt(speed_sum / compared), angular_rmse);
+    EXPECT_LT(linear_rmse, kMaxTwistLinearRmse);
+    EXPECT_LT(angular_rmse, kMaxTwistAngularRmse);
+  }
 
   ASSERT_GE(grids, 1u) << "no occupancy grid received";
   EXPECT_EQ(last_grid_frame, "drvslam_grid");
