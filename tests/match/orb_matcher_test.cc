@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "drvslam/map/map.h"
@@ -51,8 +53,10 @@ std::shared_ptr<const FrameFeatures> Observe(const Scene& scene, const SE3& T_cw
       row.at<uint8_t>(0, b / 8) ^= static_cast<uint8_t>(1 << (b % 8));
     }
     descriptors.push_back(row);
-    depth.at<float>(static_cast<int>(std::lround(px.y())), static_cast<int>(std::lround(px.x()))) =
-        static_cast<float>(pc.z());
+    // InBounds admits a point on the last pixel's far edge, which rounds one past the image.
+    const int row_index = std::min(static_cast<int>(std::lround(px.y())), depth.rows - 1);
+    const int column = std::min(static_cast<int>(std::lround(px.x())), depth.cols - 1);
+    depth.at<float>(row_index, column) = static_cast<float>(pc.z());
     landmark_of->push_back(static_cast<int>(i));
   }
   return std::make_shared<const FrameFeatures>(geometry, keypoints, descriptors, depth);
