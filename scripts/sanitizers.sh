@@ -177,6 +177,16 @@ fi
 # these tests are the ones examined so far (scripts/sanitizers/tsan.supp). A folder keeps the
 # compiler it was configured with.
 compiler=()
+# In the address tree the test sources (cmake/DrvslamModule.cmake says why) and the orchestration
+# code (the CLI, the runner, the viewer, the evaluation: cmake/DrvslamSanitizers.cmake) are
+# compiled at -O0; the modules the tests run for long (tracking, mapping, dense, rendering, the
+# synthetic truth) keep -O1.
+test_optimization=-O1
+unoptimized_targets=""
+if [ "$kind" = address ]; then
+  test_optimization=-O0
+  unoptimized_targets="drvslam_cli;drvslam_runner;drvslam_viewer;drvslam_eval"
+fi
 if [ ! -e "$build/CMakeCache.txt" ]; then
   if command -v ninja >/dev/null; then generator=(-G Ninja); fi
   if [ "$kind" = address ]; then
@@ -217,7 +227,8 @@ for entry in "${targets[@]}"; do build_targets+=("${entry%%:*}"); done
 cmake -S . -B "$build" ${generator[@]+"${generator[@]}"} ${compiler[@]+"${compiler[@]}"} \
   -DDRVSLAM_SANITIZE="$kind" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON \
-  -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
+  -DDRVSLAM_TEST_OPTIMIZATION="$test_optimization" \
+  -DDRVSLAM_UNOPTIMIZED_TARGETS="$unoptimized_targets" -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
   -DDRVSLAM_BUILD_BENCH=OFF -DDRVSLAM_BUILD_PYTHON=OFF -DDRVSLAM_BUILD_FUZZERS="$fuzzers" \
   -DDRVSLAM_BUILD_DEFAULT_VOCABULARY="$train_vocabulary" -DDRVSLAM_TESTS_WITHOUT_CLI="$tests_without_cli" \
   -DDRVSLAM_SANITIZER_TARGETS="$(IFS=';'; echo "${build_targets[*]}")" >/dev/null

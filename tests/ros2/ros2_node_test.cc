@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <opencv2/imgproc.hpp>
 #include <thread>
 #include <vector>
 
@@ -84,15 +85,18 @@ std::vector<DriverFrame> LoadFrames(const TumDataset& dataset) {
     const RgbdFrame frame = dataset.Read(i);
     DriverFrame out;
     out.sequence_timestamp = frame.timestamp;
-    for (int row = 0; row < frame.bgr.rows; ++row) {
-      for (int column = 0; column < frame.bgr.cols; ++column) {
-        const cv::Vec3b& bgr = frame.bgr.at<cv::Vec3b>(row, column);
-        out.rgb.insert(out.rgb.end(), {bgr[2], bgr[1], bgr[0]});
-        const auto millimetres =
-            static_cast<std::uint16_t>(std::lround(frame.depth.at<float>(row, column) * 1000.0f));
-        out.depth.push_back(static_cast<std::uint8_t>(millimetres & 0xff));
-        out.depth.push_back(static_cast<std::uint8_t>(millimetres >> 8));
-      }
+    // Whole-image conversions: a loop over pixels here took 200 s of the address job's test run
+    // (test sources are compiled at -O0 there).
+    cv::Mat rgb, millimetres;
+    cv::cvtColor(frame.bgr, rgb, cv::COLOR_BGR2RGB);
+    frame.depth.convertTo(millimetres, CV_16U, 1000.0);
+    out.rgb.assign(rgb.datastart, rgb.dataend);
+    const std::size_t pixels = millimetres.total();
+    const auto* millimetre = millimetres.ptr<std::uint16_t>();
+    out.depth.resize(2 * pixels);
+    for (std::size_t p = 0; p < pixels; ++p) {
+      out.depth[2 * p] = static_cast<std::uint8_t>(millimetre[p] & 0xff);
+      out.depth[2 * p + 1] = static_cast<std::uint8_t>(millimetre[p] >> 8);
     }
     frames.push_back(std::move(out));
   }
