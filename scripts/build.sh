@@ -2,7 +2,7 @@
 # Configures and builds drvslam (Release) into build/. Extra arguments go to cmake --build
 # (for example `--target drvslam_cli`).
 #
-# A unity build (cmake/DrvslamUnity.cmake): a few sources per compiler run. A build from
+# A unity build (cmake/DrvslamUnity.cmake): one compiler run per target. A build from
 # scratch, as CI makes on every run, took 749 CPU-s against 1,315 file by file (Ninja, no
 # ccache). The program is the same as a file-by-file build's (the --sequential outputs are
 # byte-identical). Editing one file recompiles its batch, so while working on the code

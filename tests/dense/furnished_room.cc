@@ -16,14 +16,14 @@
 namespace drvslam::testing {
 namespace {
 
-constexpr double kVoxel = 0.05;
+constexpr double kRoomVoxel = 0.05;
 
 using VoxelKey = std::tuple<int, int, int>;
 
 VoxelKey KeyOf(const Eigen::Vector3d& p) {
-  return {static_cast<int>(std::floor(p.x() / kVoxel)),
-          static_cast<int>(std::floor(p.y() / kVoxel)),
-          static_cast<int>(std::floor(p.z() / kVoxel))};
+  return {static_cast<int>(std::floor(p.x() / kRoomVoxel)),
+          static_cast<int>(std::floor(p.y() / kRoomVoxel)),
+          static_cast<int>(std::floor(p.z() / kRoomVoxel))};
 }
 
 bool AnyContains(const std::vector<Rect>& rects, double x, double y, double margin = 0.0) {
@@ -83,18 +83,18 @@ std::vector<Eigen::Vector3d> SurfacePoints(const RoomLayout& layout) {
       }
     }
   }
-  for (double z : Steps(0.0, layout.walls ? layout.ceiling : 0.0, kVoxel)) {  // walls
-    for (double x : Steps(room.x0, room.x1, kVoxel)) {
+  for (double z : Steps(0.0, layout.walls ? layout.ceiling : 0.0, kRoomVoxel)) {  // walls
+    for (double x : Steps(room.x0, room.x1, kRoomVoxel)) {
       points.emplace_back(x, room.y0, z);
       points.emplace_back(x, room.y1, z);
     }
-    for (double y : Steps(room.y0, room.y1, kVoxel)) {
+    for (double y : Steps(room.y0, room.y1, kRoomVoxel)) {
       points.emplace_back(room.x0, y, z);
       points.emplace_back(room.x1, y, z);
     }
   }
-  for (double x : Steps(room.x0, room.x1, kVoxel)) {
-    for (double y : Steps(room.y0, room.y1, kVoxel)) points.emplace_back(x, y, layout.ceiling);
+  for (double x : Steps(room.x0, room.x1, kRoomVoxel)) {
+    for (double y : Steps(room.y0, room.y1, kRoomVoxel)) points.emplace_back(x, y, layout.ceiling);
   }
   return points;
 }
@@ -123,7 +123,7 @@ BuiltRoom BuildRoom(const RoomLayout& layout) {
     occupied.insert(KeyOf(p));
   }
   const auto centre_of = [&](int i, int j, int k) {
-    return Eigen::Vector3d((i + 0.5) * kVoxel, (j + 0.5) * kVoxel, (k + 0.5) * kVoxel);
+    return Eigen::Vector3d((i + 0.5) * kRoomVoxel, (j + 0.5) * kRoomVoxel, (k + 0.5) * kRoomVoxel);
   };
   for (const VoxelKey& key : occupied) {
     const Eigen::Vector3d c = centre_of(std::get<0>(key), std::get<1>(key), std::get<2>(key));
@@ -131,22 +131,23 @@ BuiltRoom BuildRoom(const RoomLayout& layout) {
   }
   // Free: seen space above the seen floor and above furniture tops (below them: shadow).
   const Rect& room = layout.room;
-  for (int i = static_cast<int>(std::floor(room.x0 / kVoxel)); (i + 0.5) * kVoxel < room.x1; ++i) {
-    for (int j = static_cast<int>(std::floor(room.y0 / kVoxel)); (j + 0.5) * kVoxel < room.y1;
-         ++j) {
+  for (int i = static_cast<int>(std::floor(room.x0 / kRoomVoxel)); (i + 0.5) * kRoomVoxel < room.x1;
+       ++i) {
+    for (int j = static_cast<int>(std::floor(room.y0 / kRoomVoxel));
+         (j + 0.5) * kRoomVoxel < room.y1; ++j) {
       const Eigen::Vector3d column = centre_of(i, j, 0);
       if (!AnyContains(layout.seen_floor, column.x(), column.y())) continue;
       const Furniture* under = Under(layout, column.x(), column.y());
-      for (int k = 0; (k + 1.5) * kVoxel < layout.ceiling; ++k) {
+      for (int k = 0; (k + 1.5) * kRoomVoxel < layout.ceiling; ++k) {
         const Eigen::Vector3d c = centre_of(i, j, k);
-        if (under && c.z() < under->top + kVoxel) continue;
+        if (under && c.z() < under->top + kRoomVoxel) continue;
         if (occupied.count({i, j, k}) == 0) {
           built.samples.free.push_back((layout.world_from_scene * c).cast<float>());
         }
       }
     }
   }
-  built.samples.voxel_size = kVoxel;
+  built.samples.voxel_size = kRoomVoxel;
   for (const Camera& camera : layout.cameras) {
     built.rays.origins.push_back((layout.world_from_scene * camera.centre).cast<float>());
     built.rays.downs.push_back((layout.world_from_scene.linear() * camera.down).cast<float>());

@@ -14,10 +14,10 @@ namespace {
 
 // A 200x200 scene: a wall at 4 m, a "person" at 2 m (a torso 60x100 at (70, 40) and an arm
 // 40x10 at (130, 60), both at 2 m with a gentle slope), and the network's mask on the torso only.
-struct Scene {
+struct CompletionScene {
   cv::Mat depth = cv::Mat(200, 200, CV_32FC1, cv::Scalar(4.0f));
   Instance person;
-  Scene() {
+  CompletionScene() {
     for (int y = 40; y < 140; ++y) {
       for (int x = 70; x < 130; ++x) depth.at<float>(y, x) = 2.0f + 0.001f * (x - 70);
     }
@@ -33,7 +33,7 @@ struct Scene {
 };
 
 TEST(DepthMaskCompletionTest, TheMissedArmJoinsTheMaskAndTheWallDoesNot) {
-  Scene scene;
+  CompletionScene scene;
   MaskCompletionOptions options;
   options.margin = 0.7;  // the arm reaches 40 px past a 60 px wide box
   const int added = CompleteMaskWithDepth(scene.person, scene.depth, options);
@@ -44,22 +44,22 @@ TEST(DepthMaskCompletionTest, TheMissedArmJoinsTheMaskAndTheWallDoesNot) {
 }
 
 TEST(DepthMaskCompletionTest, GrowthStaysInsideTheGrownBoxAndNeedsDepth) {
-  Scene scene;
+  CompletionScene scene;
   MaskCompletionOptions options;
   options.margin = 0.25;  // 15 px: only the arm's first 15 columns
   EXPECT_EQ(CompleteMaskWithDepth(scene.person, scene.depth, options), 15 * 10);
-  Scene holes;
+  CompletionScene holes;
   holes.depth(cv::Rect(130, 60, 1, 10)).setTo(0.0f);  // no depth where the arm meets the body
   options.margin = 0.7;
   EXPECT_EQ(CompleteMaskWithDepth(holes.person, holes.depth, options), 0);
   // A step larger than completionDepthStep ends the surface.
-  Scene step;
+  CompletionScene step;
   step.depth(cv::Rect(130, 60, 40, 10)) += 0.1f;
   EXPECT_EQ(CompleteMaskWithDepth(step.person, step.depth, options), 0);
 }
 
 TEST(DepthMaskCompletionTest, WithoutDepthOnTheMaskNothingChangesAndBadInputThrows) {
-  Scene scene;
+  CompletionScene scene;
   scene.depth.setTo(0.0f);
   const cv::Mat before = scene.person.mask.clone();
   EXPECT_EQ(CompleteMaskWithDepth(scene.person, scene.depth, MaskCompletionOptions()), 0);

@@ -11,7 +11,7 @@ namespace {
 
 // The camera slides 6 cm per frame along x in front of the photograph: the first keyframe's
 // points leave the view, and a new keyframe is wanted after about fifteen frames.
-SE3 TruePose(int frame) { return test::ViewPose(0.0, 0.0, 0.0, -0.06 * frame, 0.0, 0.0); }
+SE3 FastTruePose(int frame) { return test::ViewPose(0.0, 0.0, 0.0, -0.06 * frame, 0.0, 0.0); }
 
 // Frames 0..frames-1 through a new tracker; frames in [veto_begin, veto_end) are vetoed. Returns
 // the frames that became keyframes after the first (the map's origin).
@@ -21,7 +21,7 @@ std::vector<int> KeyFramesMade(const cv::Mat& photo, int frames, int veto_begin,
   std::vector<int> made;
   for (int i = 0; i < frames; ++i) {
     tracker.VetoKeyFrame(i >= veto_begin && i < veto_end);
-    const TrackingResult result = tracker.Track(scene.MakeFrame(photo, TruePose(i)));
+    const TrackingResult result = tracker.Track(scene.MakeFrame(photo, FastTruePose(i)));
     EXPECT_EQ(result.state, TrackingState::kOk) << "frame " << i;
     if (i > 0 && result.new_keyframe) made.push_back(i);
   }

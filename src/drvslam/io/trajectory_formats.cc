@@ -22,7 +22,7 @@ constexpr char kEurocHeader[] =
     "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
     "q_RS_z []";
 
-bool PathExists(const std::string& path) {
+bool RegularFileExists(const std::string& path) {
   std::error_code error;
   return fs::is_regular_file(path, error);
 }
@@ -166,9 +166,9 @@ std::vector<StampLine> ReadKittiTimes(const std::string& path) {
 std::string FindKittiTimes(const std::string& path, const std::string& given) {
   if (!given.empty()) return given;
   const std::string beside = KittiTimesPath(path);
-  if (PathExists(beside)) return beside;
+  if (RegularFileExists(beside)) return beside;
   const std::string times_txt = (fs::path(path).parent_path() / "times.txt").string();
-  if (PathExists(times_txt)) return times_txt;
+  if (RegularFileExists(times_txt)) return times_txt;
   return "";
 }
 
@@ -253,7 +253,7 @@ void WriteTrajectory(const std::string& path, const Trajectory& trajectory, Traj
 }
 
 TrajectoryFormat DetectTrajectoryFormat(const std::string& path) {
-  if (!PathExists(path)) {
+  if (!RegularFileExists(path)) {
     std::error_code error;
     if (fs::is_directory(path, error)) throw Error(path + ": is a folder, not a file");
     throw Error(path + ": file does not exist");
