@@ -37,11 +37,13 @@ while [ $# -gt 0 ]; do
     --runs) runs="$2"; shift 2 ;;
     --seconds) seconds="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
 done
+# An absolute --build works as a relative one: the fuzzers run from "$root/$build" below.
+build=$(realpath -m --relative-to="$root" "$build")
 [ -n "$jobs" ] || { [ -n "$seconds" ] && jobs=1 || jobs=2; }
 
 if [ ${#targets[@]} -eq 0 ]; then
@@ -98,10 +100,11 @@ failed=0
 printf '%-14s %8s %10s %8s %8s  %s\n' target status executions cov ft log
 for name in "${targets[@]}"; do
   dir="$out/$name"
-  status=$(cat "$dir/status")
+  # A fuzzer that never wrote its status (killed, or not started) failed.
+  status=$(cat "$dir/status" 2>/dev/null || echo "none")
   # libFuzzer's last line: "#N DONE cov: X ft: Y corp: ..."; the stats: "stat::number_of_executed_units: N".
   done_line=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$dir/log.txt" | tail -n 1 || true)
-  executions=$(grep -oE 'stat::number_of_executed_units: [0-9]+' "$dir/log.txt" | awk '{print $2}' | tail -n 1)
+  executions=$(grep -oE 'stat::number_of_executed_units: [0-9]+' "$dir/log.txt" | awk '{print $2}' | tail -n 1 || true)
   cov=$(sed -nE 's/.* cov: ([0-9]+).*/\1/p' <<< "$done_line")
   ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<< "$done_line")
   printf '%-14s %8s %10s %8s %8s  %s\n' "$name" "$status" "${executions:--}" "${cov:--}" "${ft:--}" \

@@ -197,6 +197,12 @@ if [ ! -e "$build/CMakeCache.txt" ]; then
     fi
     compiler=(-DCMAKE_C_COMPILER=clang-16 -DCMAKE_CXX_COMPILER=clang++-16)
   fi
+elif [ "$kind" = address ] && ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*=.*clang' "$build/CMakeCache.txt"; then
+  # A folder configured before the address job moved to clang keeps GCC, which the fuzzers
+  # cannot use.
+  echo "error: $build/ was configured with another compiler than clang-16: remove it" \
+    "(rm -rf $build) and run this job again" >&2
+  exit 2
 fi
 # The address job's tests run the instrumented CLI (end-to-end runs, `drvslam ros2`); the thread
 # job's only render their sequences with it, which the release CLI does (above), so that job
