@@ -45,10 +45,10 @@ function(drvslam_sanitizer_set)
 endfunction()
 cmake_language(DEFER DIRECTORY ${CMAKE_SOURCE_DIR} CALL drvslam_sanitizer_set)
 
-# In a sanitizer tree, targets compiled at -O0 (the address job's orchestration code: the CLI,
-# the runner, the viewer and the evaluation). Instrumented and optimized at -O1 they cost clang
-# 2-2.5 times as long to compile as at -O0, for code that runs for a small share of any test;
-# the code the tests run for long (tracking, mapping, rendering) keeps -O1.
+# In a sanitizer tree, targets compiled at -O0 (the orchestration code: the runner, the viewer
+# and the evaluation, and in the address tree the CLI). Instrumented and optimized at -O1 they
+# cost clang 2-2.5 times as long to compile as at -O0, for code that runs for a small share of
+# any test; the code the tests run for long (tracking, mapping, rendering) keeps -O1.
 set(DRVSLAM_UNOPTIMIZED_TARGETS "" CACHE STRING "Targets compiled at -O0 (scripts/sanitizers.sh)")
 function(drvslam_unoptimized_targets)
   foreach(target_name ${DRVSLAM_UNOPTIMIZED_TARGETS})

@@ -15,14 +15,14 @@ using testing::BoxInstance;
 using testing::PlaneFrame;
 using testing::SmallCamera;
 
-constexpr int kPersonClass = 0;
-constexpr float kWall = 2.0f;
+constexpr int kEvidencePersonClass = 0;
+constexpr float kEvidenceWall = 2.0f;
 constexpr float kPerson = 1.0f;
 
 // Points nearer than the wall: what a person left.
 std::size_t CountInFrontOfWall(const DenseCloud& cloud) {
   std::size_t n = 0;
-  for (const DensePoint& p : cloud) n += p.position.z() < kWall - 0.1f;
+  for (const DensePoint& p : cloud) n += p.position.z() < kEvidenceWall - 0.1f;
   return n;
 }
 
@@ -39,23 +39,23 @@ TEST(DenseEvidence, APersonWhoStoodStillAndLeftLeavesNoPoints) {
   long id = 0;
   // Standing still and never judged moving, its track lost: only evidence can remove it.
   for (int i = 0; i < 6; ++i, ++id) {
-    DenseFrame frame = PlaneFrame(camera, kWall, SE3(), id);
+    DenseFrame frame = PlaneFrame(camera, kEvidenceWall, SE3(), id);
     frame.depth(body).setTo(kPerson);
-    DenseInstance person = BoxInstance(camera, body, kPersonClass);
+    DenseInstance person = BoxInstance(camera, body, kEvidencePersonClass);
     person.potentially_moving = true;
     frame.instances.push_back(person);
     mapper.AddKeyFrame(frame, nullptr);
   }
   ASSERT_GT(CountInFrontOfWall(mapper.Assemble()), 20u);  // mapped while it stood
   for (int i = 0; i < 6; ++i, ++id)
-    mapper.AddKeyFrame(PlaneFrame(camera, kWall, SE3(), id), nullptr);
+    mapper.AddKeyFrame(PlaneFrame(camera, kEvidenceWall, SE3(), id), nullptr);
   const DenseCloud cloud = mapper.Assemble();
   EXPECT_EQ(CountInFrontOfWall(cloud), 0u);
   // The wall it hid is mapped.
   std::size_t wall_behind = 0;
   for (const DensePoint& p : cloud) {
     const float u = p.position.x() / p.position.z() * 150.0f + 80.0f;
-    wall_behind += std::abs(p.position.z() - kWall) < 0.03f && u > 55 && u < 85;
+    wall_behind += std::abs(p.position.z() - kEvidenceWall) < 0.03f && u > 55 && u < 85;
   }
   EXPECT_GT(wall_behind, 10u);
   EXPECT_GT(mapper.Stats().carving_votes, 20u);
@@ -65,12 +65,12 @@ TEST(DenseEvidence, ADetectionMissedForThreeFramesPlantsNothing) {
   const CameraOptions camera = SmallCamera();
   DenseMapper mapper(camera, EveryFrameAKeyFrame(), /*sequential=*/true);
   for (long f = 0; f < 14; ++f) {
-    DenseFrame frame = PlaneFrame(camera, kWall, SE3(), f);
+    DenseFrame frame = PlaneFrame(camera, kEvidenceWall, SE3(), f);
     // Walking right 6 px (4 cm) a frame: frames 4-6 overlap, so a voxel sees it 2-3 times.
     const cv::Rect body(10 + 6 * static_cast<int>(f), 20, 30, 80);
     frame.depth(body).setTo(kPerson);
     if (f < 4 || f > 6) {
-      DenseInstance person = BoxInstance(camera, body, kPersonClass);
+      DenseInstance person = BoxInstance(camera, body, kEvidencePersonClass);
       person.potentially_moving = true;
       person.moving = true;
       person.track_id = 1;
@@ -92,11 +92,11 @@ TEST(DenseEvidence, APersonMissedForHalfASecondPlantsNothing) {
   const cv::Rect body(50, 20, 40, 80);
   ASSERT_EQ(DenseMapOptions().min_view_span, 1.0);
   for (long k = 0; k < 7; ++k) {
-    DenseFrame frame = PlaneFrame(camera, kWall, SE3(), k);
+    DenseFrame frame = PlaneFrame(camera, kEvidenceWall, SE3(), k);
     frame.timestamp = 0.2 * static_cast<double>(k);
     frame.depth(body).setTo(kPerson);
     if (k >= 3) {
-      DenseInstance person = BoxInstance(camera, body, kPersonClass);
+      DenseInstance person = BoxInstance(camera, body, kEvidencePersonClass);
       person.potentially_moving = true;
       person.moving = true;
       person.track_id = 1;
@@ -121,14 +121,14 @@ TEST(DenseEvidence, NeighboursVetoADetectionTheKeyFrameMissed) {
     options.neighbour_veto = veto;
     DenseMapper mapper(camera, options, /*sequential=*/true);
     for (long f = 0; f < 5; ++f) {
-      DenseFrame frame = PlaneFrame(camera, kWall, SE3(), f);
+      DenseFrame frame = PlaneFrame(camera, kEvidenceWall, SE3(), f);
       const cv::Rect body(40 + 2 * static_cast<int>(f), 20, 30, 80);  // walking slowly
       frame.depth(body).setTo(kPerson);
       if (f == 2) {
         mapper.AddKeyFrame(frame, nullptr);  // the network missed it here only
         continue;
       }
-      DenseInstance person = BoxInstance(camera, body, kPersonClass);
+      DenseInstance person = BoxInstance(camera, body, kEvidencePersonClass);
       person.potentially_moving = true;
       person.moving = true;
       person.track_id = 1;
@@ -149,10 +149,10 @@ TEST(DenseEvidence, OneFrameDoesNotPlantAPoint) {
   const CameraOptions camera = SmallCamera();
   DenseMapper mapper(camera, EveryFrameAKeyFrame(), /*sequential=*/true);
   ASSERT_EQ(DenseMapOptions().min_views, 3);
-  mapper.AddKeyFrame(PlaneFrame(camera, kWall, SE3(), 0), nullptr);
-  mapper.AddKeyFrame(PlaneFrame(camera, kWall, SE3(), 1), nullptr);
+  mapper.AddKeyFrame(PlaneFrame(camera, kEvidenceWall, SE3(), 0), nullptr);
+  mapper.AddKeyFrame(PlaneFrame(camera, kEvidenceWall, SE3(), 1), nullptr);
   EXPECT_TRUE(mapper.Assemble().empty());
-  mapper.AddKeyFrame(PlaneFrame(camera, kWall, SE3(), 2), nullptr);
+  mapper.AddKeyFrame(PlaneFrame(camera, kEvidenceWall, SE3(), 2), nullptr);
   EXPECT_GT(mapper.Assemble().size(), 100u);
 }
 
@@ -180,13 +180,13 @@ TEST(DenseEvidence, AVoxelSeenCloserLaterMovesTowardsTheSurface) {
 
 TEST(DenseEvidence, LooseMasksGrowOverTheObjectAndFlyingPixelsGo) {
   const CameraOptions camera = SmallCamera();
-  DenseFrame frame = PlaneFrame(camera, kWall);
+  DenseFrame frame = PlaneFrame(camera, kEvidenceWall);
   const cv::Rect body(50, 20, 40, 80);
   frame.depth(body).setTo(kPerson);
   // The sensor smears the right silhouette into a column between person and wall.
   frame.depth(cv::Rect(90, 20, 1, 80)).setTo(1.5f);
   // The network's mask is late: it covers the body but 12 px to the left.
-  DenseInstance person = BoxInstance(camera, cv::Rect(38, 20, 40, 80), kPersonClass);
+  DenseInstance person = BoxInstance(camera, cv::Rect(38, 20, 40, 80), kEvidencePersonClass);
   person.potentially_moving = true;
   person.moving = true;
   frame.instances.push_back(person);
@@ -220,7 +220,7 @@ TEST(DenseEvidence, DistortedRaysBackProjectOntoThePlane) {
   camera.p2 = -0.0008;
   camera.k3 = -0.01;
   // A wall 2 m away, fronto-parallel: every pixel's depth is 2 m whatever its ray.
-  const DenseFrame frame = PlaneFrame(camera, kWall);
+  const DenseFrame frame = PlaneFrame(camera, kEvidenceWall);
   DenseMapOptions options;
   const PixelRoles roles = PaintRoles(frame, options);
   const DenseCloud cloud = BackProject(frame, roles, PixelRole::kBackground, camera, options);
@@ -246,7 +246,7 @@ TEST(DenseEvidence, DistortedRaysBackProjectOntoThePlane) {
   EXPECT_LT(worst, 0.01);
   // The pinhole ray of the corner pixel misses by centimetres on the wall.
   const DensePoint& corner = cloud.front();
-  const double pinhole_x = (0 - camera.cx) / camera.fx * kWall;
+  const double pinhole_x = (0 - camera.cx) / camera.fx * kEvidenceWall;
   EXPECT_GT(std::abs(corner.position.x() - pinhole_x), 0.02);
 }
 

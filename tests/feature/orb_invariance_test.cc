@@ -15,14 +15,14 @@
 namespace drvslam {
 namespace {
 
-struct Features {
+struct ExtractedFeatures {
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
 };
 
-Features Extract(const cv::Mat& gray, int target = 1000) {
+ExtractedFeatures ExtractFeatures(const cv::Mat& gray, int target = 1000) {
   OrbExtractor extractor{OrbExtractorOptions{}};
-  Features f;
+  ExtractedFeatures f;
   extractor.Extract(gray, cv::Mat(), target, &f.keypoints, &f.descriptors);
   return f;
 }
@@ -60,7 +60,7 @@ struct Comparison {
 
 // Maps every keypoint of `a` accepted by `inside` into image b with `map`, and looks for its
 // partner among b's keypoints (on octave a.octave + octave_shift for the descriptor check).
-Comparison Compare(const Features& a, const Features& b,
+Comparison Compare(const ExtractedFeatures& a, const ExtractedFeatures& b,
                    const std::function<cv::Point2f(cv::Point2f)>& map,
                    const std::function<bool(cv::Point2f)>& inside, int octave_shift) {
   Comparison c;
@@ -108,8 +108,8 @@ TEST_P(InvarianceTest, RotationBy30Degrees) {
   const cv::Mat rotation = cv::getRotationMatrix2D(center, 30.0, 1.0);
   cv::Mat rotated;
   cv::warpAffine(gray_, rotated, rotation, gray_.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-  const Features a = Extract(gray_);
-  const Features b = Extract(rotated);
+  const ExtractedFeatures a = ExtractFeatures(gray_);
+  const ExtractedFeatures b = ExtractFeatures(rotated);
   cv::Matx23d m = rotation;
   const auto map = [&](cv::Point2f p) {
     return cv::Point2f(static_cast<float>(m(0, 0) * p.x + m(0, 1) * p.y + m(0, 2)),
@@ -127,8 +127,8 @@ TEST_P(InvarianceTest, ScaleChangeBy1Point2) {
   // The scaled image's level l sees what the original's level l + 1 sees.
   cv::Mat smaller;
   cv::resize(gray_, smaller, cv::Size(533, 400), 0, 0, cv::INTER_AREA);
-  const Features a = Extract(gray_);
-  const Features b = Extract(smaller, 800);
+  const ExtractedFeatures a = ExtractFeatures(gray_);
+  const ExtractedFeatures b = ExtractFeatures(smaller, 800);
   const float sx = 533.0f / 640.0f;
   const float sy = 400.0f / 480.0f;
   const auto map = [&](cv::Point2f p) {
@@ -143,8 +143,8 @@ TEST_P(InvarianceTest, ScaleChangeBy1Point2) {
 TEST_P(InvarianceTest, QuarterTurnAddsNinetyDegrees) {
   cv::Mat turned;
   cv::rotate(gray_, turned, cv::ROTATE_90_CLOCKWISE);
-  const Features a = Extract(gray_);
-  const Features b = Extract(turned);
+  const ExtractedFeatures a = ExtractFeatures(gray_);
+  const ExtractedFeatures b = ExtractFeatures(turned);
   // Clockwise on screen: (x, y) -> (rows - 1 - y, x), and gradients (dx, dy) -> (-dy, dx).
   int level0_pairs = 0;
   std::vector<double> errors;

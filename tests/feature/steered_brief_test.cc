@@ -9,7 +9,7 @@
 namespace drvslam {
 namespace {
 
-cv::Mat Noise(int seed) {
+cv::Mat NoiseImage(int seed) {
   cv::Mat image(64, 80, CV_8UC1);
   cv::RNG rng(seed);
   rng.fill(image, cv::RNG::UNIFORM, 0, 256);
@@ -33,7 +33,7 @@ float ReferenceAngle(const cv::Mat& image, int x, int y) {
 
 TEST(SteeredBriefTest, CentroidAngleMatchesPixelByPixelMoments) {
   for (int seed = 0; seed < 20; ++seed) {
-    const cv::Mat image = Noise(seed);
+    const cv::Mat image = NoiseImage(seed);
     for (const cv::Point p : {cv::Point(15, 15), cv::Point(63, 48), cv::Point(40, 30)}) {
       EXPECT_EQ(IntensityCentroidAngle(image, p.x, p.y), ReferenceAngle(image, p.x, p.y))
           << "seed " << seed << " at " << p;
@@ -55,7 +55,7 @@ TEST(SteeredBriefTest, CentroidPointsAtTheBrightSide) {
 TEST(SteeredBriefTest, DescriptorMatchesPointByPointRotation) {
   const BriefPattern& pattern = GetBriefPattern();
   for (int seed = 0; seed < 10; ++seed) {
-    const cv::Mat image = Noise(100 + seed);
+    const cv::Mat image = NoiseImage(100 + seed);
     for (const float angle : {0.0f, 30.0f, 90.0f, 137.5f, 359.9f}) {
       uint8_t descriptor[32];
       ComputeSteeredBrief(image, 40, 32, angle, descriptor);

@@ -23,17 +23,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::size_t kFrames = 120;
+constexpr std::size_t kResetRunFrames = 120;
 constexpr std::size_t kBlankFrom = 50;  // frames 50..54 are blank
 constexpr std::size_t kBlankTo = 55;
 
-class ResetWhenLostTest : public testing::TestWithParam<bool> {
+class ResetWhenLostTest : public ::testing::TestWithParam<bool> {
  protected:
   void SetUp() override {
     ASSERT_TRUE(test::SynthesizeInFreshFolder(
         "drvslam_reset_when_lost_test",
         "--scenario static_xyz --width 320 --height 240 --seed 4 --frames " +
-            std::to_string(kFrames),
+            std::to_string(kResetRunFrames),
         &root_));
     std::ifstream in(root_ / "seq" / "associations.txt");
     std::string line;
@@ -46,7 +46,7 @@ class ResetWhenLostTest : public testing::TestWithParam<bool> {
       stamps_.push_back(stamp);
       rgbs_.push_back(rgb);
     }
-    ASSERT_EQ(stamps_.size(), kFrames);
+    ASSERT_EQ(stamps_.size(), kResetRunFrames);
     for (std::size_t i = kBlankFrom; i < kBlankTo; ++i) {
       const fs::path path = root_ / "seq" / rgbs_[i];
       const cv::Mat original = cv::imread(path.string());
@@ -77,7 +77,7 @@ TEST_P(ResetWhenLostTest, TrajectoryHoldsTheFinalMapOnly) {
   const Trajectory trajectory = ReadTumTrajectory(summary.camera_trajectory_path);
   ASSERT_FALSE(trajectory.empty());
   EXPECT_EQ(trajectory.size(), summary.stats.tracked);
-  EXPECT_GE(trajectory.size(), kFrames - kBlankTo - 2);
+  EXPECT_GE(trajectory.size(), kResetRunFrames - kBlankTo - 2);
   // Only frames after the blank stretch, in one world frame: rigidly aligned to the ground truth
   // they agree to a few centimetres. The first map's frames, posed from its own origin, would not:
   // the true poses mixed that way (frames 0-49 from frame 0, the rest from frame 55) give 16.5 cm.
@@ -97,8 +97,8 @@ TEST_P(ResetWhenLostTest, TrajectoryHoldsTheFinalMapOnly) {
   EXPECT_EQ(stats.at("frames_discarded").get<std::size_t>(), kBlankFrom);
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, ResetWhenLostTest, testing::Values(true, false),
-                         [](const testing::TestParamInfo<bool>& info) {
+INSTANTIATE_TEST_SUITE_P(Modes, ResetWhenLostTest, ::testing::Values(true, false),
+                         [](const ::testing::TestParamInfo<bool>& info) {
                            return info.param ? "Sequential" : "Threaded";
                          });
 

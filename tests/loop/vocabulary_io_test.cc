@@ -76,7 +76,7 @@ class VocabularyIoTest : public ::testing::Test {
   int counter_ = 0;
 };
 
-BowVocabulary TrainedVocabulary() {
+BowVocabulary TrainedTestVocabulary() {
   VocabularyTrainerOptions options;
   options.branching_factor = 6;
   options.depth = 3;
@@ -118,7 +118,7 @@ TEST_F(VocabularyIoTest, AcceptsOrbSlamSpacingCrLfAndBlankLines) {
 }
 
 TEST_F(VocabularyIoTest, TextRoundTripGivesIdenticalTreeAndTransforms) {
-  const BowVocabulary vocabulary = TrainedVocabulary();
+  const BowVocabulary vocabulary = TrainedTestVocabulary();
   WriteTextVocabulary(vocabulary, Path("voc.txt"));
   const BowVocabulary read = ReadTextVocabulary(Path("voc.txt"));
   EXPECT_TRUE(read == vocabulary);  // weights compared exactly
@@ -138,7 +138,7 @@ TEST_F(VocabularyIoTest, TextRoundTripGivesIdenticalTreeAndTransforms) {
 }
 
 TEST_F(VocabularyIoTest, BinaryRoundTripGivesIdenticalTreeAndTransforms) {
-  const BowVocabulary vocabulary = TrainedVocabulary();
+  const BowVocabulary vocabulary = TrainedTestVocabulary();
   WriteBinaryVocabulary(vocabulary, Path("voc.bin"));
   const BowVocabulary read = ReadBinaryVocabulary(Path("voc.bin"));
   EXPECT_TRUE(read == vocabulary);

@@ -8,12 +8,12 @@
 namespace drvslam {
 namespace {
 
-using Ambient = Eigen::Matrix<double, kPoseAmbientSize, 1>;
-using PlusJacobian = Eigen::Matrix<double, kPoseAmbientSize, kPoseTangentSize, Eigen::RowMajor>;
+using PoseAmbient = Eigen::Matrix<double, kPoseAmbientSize, 1>;
+using PosePlusJacobian = Eigen::Matrix<double, kPoseAmbientSize, kPoseTangentSize, Eigen::RowMajor>;
 using MinusJacobian = Eigen::Matrix<double, kPoseTangentSize, kPoseAmbientSize, Eigen::RowMajor>;
 
-Ambient ToParameters(const SE3& pose) {
-  Ambient x;
+PoseAmbient ToParameters(const SE3& pose) {
+  PoseAmbient x;
   PoseToParameters(pose, x.data());
   return x;
 }
@@ -39,7 +39,7 @@ double PoseDistance(const SE3& a, const SE3& b) { return (a.Matrix() - b.Matrix(
 
 TEST(SE3ManifoldTest, ParametersRoundTrip) {
   for (const SE3& pose : SomePoses()) {
-    const Ambient x = ToParameters(pose);
+    const PoseAmbient x = ToParameters(pose);
     EXPECT_LT(PoseDistance(ParametersToPose(x.data()), pose), 1e-15);
     EXPECT_DOUBLE_EQ(x[3], pose.Quaternion().w());
     EXPECT_DOUBLE_EQ(x[6], pose.Translation().z());
@@ -56,8 +56,8 @@ TEST(SE3ManifoldTest, PlusIsLeftMultiplicationByExp) {
   const SE3Manifold manifold;
   const Vector6d delta = SomeTwist();
   for (const SE3& pose : SomePoses()) {
-    const Ambient x = ToParameters(pose);
-    Ambient moved;
+    const PoseAmbient x = ToParameters(pose);
+    PoseAmbient moved;
     ASSERT_TRUE(manifold.Plus(x.data(), delta.data(), moved.data()));
     EXPECT_LT(PoseDistance(ParametersToPose(moved.data()), SE3::Exp(delta) * pose), 1e-14);
     EXPECT_NEAR(Eigen::Vector4d(moved.head<4>()).norm(), 1.0, 1e-15);
@@ -68,8 +68,8 @@ TEST(SE3ManifoldTest, PlusOfZeroIsIdentity) {
   const SE3Manifold manifold;
   const Vector6d zero = Vector6d::Zero();
   for (const SE3& pose : SomePoses()) {
-    const Ambient x = ToParameters(pose);
-    Ambient moved;
+    const PoseAmbient x = ToParameters(pose);
+    PoseAmbient moved;
     ASSERT_TRUE(manifold.Plus(x.data(), zero.data(), moved.data()));
     EXPECT_LT((moved - x).norm(), 1e-15);
   }
@@ -81,8 +81,8 @@ TEST(SE3ManifoldTest, MinusUndoesPlus) {
     const Vector6d delta = scale * SomeTwist();
     if (delta.tail<3>().norm() >= M_PI) continue;
     for (const SE3& pose : SomePoses()) {
-      const Ambient x = ToParameters(pose);
-      Ambient moved;
+      const PoseAmbient x = ToParameters(pose);
+      PoseAmbient moved;
       Vector6d back;
       ASSERT_TRUE(manifold.Plus(x.data(), delta.data(), moved.data()));
       ASSERT_TRUE(manifold.Minus(moved.data(), x.data(), back.data()));
@@ -96,10 +96,10 @@ TEST(SE3ManifoldTest, PlusUndoesMinusEvenForLargeRotations) {
   const std::vector<SE3> poses = SomePoses();
   for (const SE3& from : poses) {
     for (const SE3& to : poses) {
-      const Ambient x = ToParameters(from);
-      const Ambient y = ToParameters(to);
+      const PoseAmbient x = ToParameters(from);
+      const PoseAmbient y = ToParameters(to);
       Vector6d delta;
-      Ambient back;
+      PoseAmbient back;
       ASSERT_TRUE(manifold.Minus(y.data(), x.data(), delta.data()));
       ASSERT_TRUE(manifold.Plus(x.data(), delta.data(), back.data()));
       EXPECT_LT(PoseDistance(ParametersToPose(back.data()), to), 1e-12);
@@ -112,14 +112,14 @@ TEST(SE3ManifoldTest, PlusJacobianMatchesCentralDifferences) {
   const SE3Manifold manifold;
   const double h = 1e-6;
   for (const SE3& pose : SomePoses()) {
-    const Ambient x = ToParameters(pose);
-    PlusJacobian analytic;
+    const PoseAmbient x = ToParameters(pose);
+    PosePlusJacobian analytic;
     ASSERT_TRUE(manifold.PlusJacobian(x.data(), analytic.data()));
-    PlusJacobian numeric;
+    PosePlusJacobian numeric;
     for (int i = 0; i < kPoseTangentSize; ++i) {
       Vector6d step = Vector6d::Zero();
       step[i] = h;
-      Ambient forward, backward;
+      PoseAmbient forward, backward;
       const Vector6d minus_step = -step;
       manifold.Plus(x.data(), step.data(), forward.data());
       manifold.Plus(x.data(), minus_step.data(), backward.data());
@@ -135,12 +135,12 @@ TEST(SE3ManifoldTest, MinusJacobianMatchesCentralDifferences) {
   const SE3Manifold manifold;
   const double h = 1e-6;
   for (const SE3& pose : SomePoses()) {
-    const Ambient x = ToParameters(pose);
+    const PoseAmbient x = ToParameters(pose);
     MinusJacobian analytic;
     ASSERT_TRUE(manifold.MinusJacobian(x.data(), analytic.data()));
     MinusJacobian numeric;
     for (int i = 0; i < kPoseAmbientSize; ++i) {
-      Ambient forward = x, backward = x;
+      PoseAmbient forward = x, backward = x;
       forward[i] += h;
       backward[i] -= h;
       Vector6d d_forward, d_backward;
@@ -158,8 +158,8 @@ TEST(SE3ManifoldTest, MinusJacobianMatchesCentralDifferences) {
 TEST(SE3ManifoldTest, MinusJacobianIsLeftInverseOfPlusJacobian) {
   const SE3Manifold manifold;
   for (const SE3& pose : SomePoses()) {
-    const Ambient x = ToParameters(pose);
-    PlusJacobian plus;
+    const PoseAmbient x = ToParameters(pose);
+    PosePlusJacobian plus;
     MinusJacobian minus;
     manifold.PlusJacobian(x.data(), plus.data());
     manifold.MinusJacobian(x.data(), minus.data());

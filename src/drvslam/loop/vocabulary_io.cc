@@ -20,9 +20,9 @@ constexpr char kBinaryMagic[8] = {'D', 'R', 'V', 'S', 'B', 'O', 'W', '\0'};
 constexpr uint32_t kBinaryVersion = 1;
 constexpr std::size_t kBinaryHeaderBytes = 36;
 constexpr std::size_t kBinaryNodeBytes = 4 + 1 + 32 + 8;
-constexpr int kDescriptorBytes = 32;
+constexpr int kFileDescriptorBytes = 32;
 // parent, is_leaf, 32 bytes, weight.
-constexpr int kTextNodeFields = 2 + kDescriptorBytes + 1;
+constexpr int kTextNodeFields = 2 + kFileDescriptorBytes + 1;
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
@@ -185,7 +185,7 @@ BowVocabulary ReadTextVocabulary(const std::string& path) {
   VocabularyBuilder builder(clamp_int(header[0]), clamp_int(header[1]), path, "line 1");
   builder.Reserve(static_cast<std::size_t>(std::count(content.begin(), content.end(), '\n')) + 1);
 
-  uint8_t descriptor[kDescriptorBytes];
+  uint8_t descriptor[kFileDescriptorBytes];
   while (next_line(&line)) {
     const int count = SplitFields(line, fields.data(), kTextNodeFields);
     if (count == 0) continue;
@@ -201,7 +201,7 @@ BowVocabulary ReadTextVocabulary(const std::string& path) {
     if (!ParseInt(fields[1], &is_leaf) || (is_leaf != 0 && is_leaf != 1)) {
       fail("is_leaf " + Quote(fields[1]) + " must be 0 or 1");
     }
-    for (int b = 0; b < kDescriptorBytes; ++b) {
+    for (int b = 0; b < kFileDescriptorBytes; ++b) {
       long long value = 0;
       if (!ParseInt(fields[2 + b], &value) || value < 0 || value > 255) {
         fail("descriptor byte d" + std::to_string(b) + " " + Quote(fields[2 + b]) +
@@ -282,7 +282,7 @@ BowVocabulary ReadBinaryVocabulary(const std::string& path) {
       BinaryFail(path, offset + 4, "is_leaf byte " + std::to_string(is_leaf) + " must be 0 or 1");
     }
     double weight = 0.0;
-    const uint64_t weight_bits = GetU64(record + 5 + kDescriptorBytes);
+    const uint64_t weight_bits = GetU64(record + 5 + kFileDescriptorBytes);
     std::memcpy(&weight, &weight_bits, sizeof(weight));
     builder.AddNode(static_cast<int>(parent), is_leaf == 1, record + 5, weight, "offset",
                     static_cast<int64_t>(offset));
@@ -322,7 +322,7 @@ void WriteTextVocabulary(const BowVocabulary& vocabulary, const std::string& pat
     append_number(vocabulary.NodeParent(node));
     chunk += vocabulary.NodeIsLeaf(node) ? " 1" : " 0";
     const uint8_t* descriptor = vocabulary.NodeDescriptor(node);
-    for (int b = 0; b < kDescriptorBytes; ++b) {
+    for (int b = 0; b < kFileDescriptorBytes; ++b) {
       chunk += ' ';
       append_number(static_cast<int>(descriptor[b]));
     }
@@ -352,7 +352,8 @@ void WriteBinaryVocabulary(const BowVocabulary& vocabulary, const std::string& p
   for (int node = 1; node < node_count; ++node) {
     PutU32(static_cast<uint32_t>(vocabulary.NodeParent(node)), &chunk);
     chunk.push_back(vocabulary.NodeIsLeaf(node) ? 1 : 0);
-    chunk.append(reinterpret_cast<const char*>(vocabulary.NodeDescriptor(node)), kDescriptorBytes);
+    chunk.append(reinterpret_cast<const char*>(vocabulary.NodeDescriptor(node)),
+                 kFileDescriptorBytes);
     const double weight = vocabulary.NodeWeight(node);
     uint64_t weight_bits = 0;
     std::memcpy(&weight_bits, &weight, sizeof(weight));

@@ -28,7 +28,7 @@ using testing::TestFolder;
 using testing::TwoTextures;
 using testing::Unlit;
 
-cv::Point2d Centroid(const cv::Mat& binary) {
+cv::Point2d MaskCentroid(const cv::Mat& binary) {
   const cv::Moments m = cv::moments(binary, true);
   return {m.m10 / m.m00, m.m01 / m.m00};
 }
@@ -147,7 +147,7 @@ TEST(RealCameraTest, DistortedRenderPutsKnownPointsWhereProjectPointsDoes) {
   for (std::size_t k = 0; k < centres.size(); ++k) {
     const cv::Mat mask = out.instance == static_cast<int>(k + 1);
     ASSERT_GT(cv::countNonZero(mask), 10) << k;
-    const cv::Point2d at = Centroid(mask);
+    const cv::Point2d at = MaskCentroid(mask);
     // Within a pixel: the square's edges are quantized twice, to the canvas pixel centres and
     // to the nearest canvas pixel of each sensor pixel.
     EXPECT_NEAR(at.x, projected[k].x, 1.0) << k;
@@ -160,7 +160,7 @@ TEST(RealCameraTest, DistortedRenderPutsKnownPointsWhereProjectPointsDoes) {
     cv::cvtColor(out.bgr, grey, cv::COLOR_BGR2GRAY);
     const cv::Rect around(static_cast<int>(at.x) - 10, static_cast<int>(at.y) - 10, 21, 21);
     white = grey(around) > 125;
-    const cv::Point2d colour_at = Centroid(white) + cv::Point2d(around.x, around.y);
+    const cv::Point2d colour_at = MaskCentroid(white) + cv::Point2d(around.x, around.y);
     EXPECT_NEAR(colour_at.x, at.x, 0.5) << k;
     EXPECT_NEAR(colour_at.y, at.y, 0.5) << k;
     cv::Mat disagree;

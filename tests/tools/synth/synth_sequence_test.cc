@@ -26,8 +26,8 @@ namespace {
 using testing::ReadFileBytes;
 using testing::TestFolder;
 
-SynthOptions SmallOptions(const std::string& scenario, int frames, int width = 320,
-                          int height = 240) {
+SynthOptions SmallSequenceOptions(const std::string& scenario, int frames, int width = 320,
+                                  int height = 240) {
   SynthOptions options;
   options.scenario = scenario;
   options.frames = frames;
@@ -39,12 +39,12 @@ SynthOptions SmallOptions(const std::string& scenario, int frames, int width = 3
 }
 
 const SynthSequence& Walking() {
-  static const SynthSequence sequence(SmallOptions("walking_xyz", 90));
+  static const SynthSequence sequence(SmallSequenceOptions("walking_xyz", 90));
   return sequence;
 }
 
 const SynthSequence& Sitting() {
-  static const SynthSequence sequence(SmallOptions("sitting_xyz", 300, 160, 120));
+  static const SynthSequence sequence(SmallSequenceOptions("sitting_xyz", 300, 160, 120));
   return sequence;
 }
 
@@ -169,7 +169,7 @@ TEST(SynthSequenceTest, ActorHeadsProjectOntoTheirMaskAndMasksComposite) {
 
 TEST(SynthSequenceTest, WrittenSequenceReadsBackWithTheDatasetReader) {
   TestFolder folder("dataset");
-  const SynthOptions options = SmallOptions("walking_xyz", 5);
+  const SynthOptions options = SmallSequenceOptions("walking_xyz", 5);
   const SynthSummary summary = GenerateSequence(options, folder.Path());
   EXPECT_EQ(summary.frames, 5);
   const SynthSequence& reference = Walking();  // same options but longer: same first frames
@@ -223,7 +223,7 @@ TEST(SynthSequenceTest, WrittenSequenceReadsBackWithTheDatasetReader) {
 
 TEST(SynthSequenceTest, SameSeedGivesIdenticalFilesAndAnotherSeedOtherTextures) {
   TestFolder first("seed_a"), second("seed_b"), other("seed_c");
-  SynthOptions options = SmallOptions("walking_rpy", 3, 160, 120);
+  SynthOptions options = SmallSequenceOptions("walking_rpy", 3, 160, 120);
   options.sensor = SensorOptions();  // noise on: it must repeat too
   GenerateSequence(options, first.Path());
   GenerateSequence(options, second.Path());
@@ -285,7 +285,7 @@ TEST(SynthSequenceTest, MovingFlagsFollowTheActors) {
 
 TEST(SynthSequenceTest, StaticCounterpartIsTheSameWorldWithoutActors) {
   const SynthSequence& walking = Walking();
-  const SynthSequence quiet(SmallOptions("static_xyz", 20));
+  const SynthSequence quiet(SmallSequenceOptions("static_xyz", 20));
   for (const SynthInstance& instance : quiet.Instances()) {
     EXPECT_GE(instance.id, kFirstObjectInstanceId);
     EXPECT_NE(instance.class_name, "person");
@@ -359,7 +359,7 @@ TEST(SynthSequenceTest, FramesAreRichInOrbFeatures) {
 }
 
 TEST(SynthSequenceTest, WorksWithoutPhotographs) {
-  SynthOptions options = SmallOptions("walking_static", 2, 160, 120);
+  SynthOptions options = SmallSequenceOptions("walking_static", 2, 160, 120);
   options.opencv_samples = "/nonexistent/opencv-doc";
   const SynthSequence sequence(options);
   EXPECT_EQ(sequence.TextureSource(), "procedural");
@@ -377,7 +377,7 @@ TEST(SynthSequenceTest, BillboardsCutOutTheirTransparentPart) {
   cv::merge(std::vector<cv::Mat>{colours, alpha}, picture);
   cv::imwrite(folder / "person.png", picture);
   // Seated behind the table, the cut-out stands fully in view.
-  SynthOptions options = SmallOptions("sitting_static", 10);
+  SynthOptions options = SmallSequenceOptions("sitting_static", 10);
   options.actors = 1;
   options.billboards = folder.Path();
   const SynthSequence sequence(options);
@@ -423,7 +423,7 @@ TEST(SynthSequenceTest, ReplaysATumRecording) {
   const std::string file = std::string(DRVSLAM_SHARED_DIR) +
                            "/tum-groundtruth/rgbd_dataset_freiburg3_walking_xyz/groundtruth.txt";
   if (!std::filesystem::exists(file)) DRVSLAM_MISSING_TEST_DATA() << "missing " << file;
-  SynthOptions options = SmallOptions("walking_xyz", 12, 160, 120);
+  SynthOptions options = SmallSequenceOptions("walking_xyz", 12, 160, 120);
   options.trajectory = file;
   const SynthSequence sequence(options);
   const Trajectory recorded = ReadTumTrajectory(file);
@@ -466,30 +466,30 @@ TEST(SynthSequenceTest, BadOptionsAreErrorsNamingTheOption) {
     }
     return std::string("no error");
   };
-  SynthOptions options = SmallOptions("walking_xyz", 2, 64, 48);
+  SynthOptions options = SmallSequenceOptions("walking_xyz", 2, 64, 48);
   options.scenario = "running_xyz";
   EXPECT_NE(message(options).find("unknown scenario 'running_xyz'"), std::string::npos);
-  options = SmallOptions("walking_xyz", 0, 64, 48);
+  options = SmallSequenceOptions("walking_xyz", 0, 64, 48);
   EXPECT_NE(message(options).find("--frames 0"), std::string::npos);
-  options = SmallOptions("static_rpy", 2, 64, 48);
+  options = SmallSequenceOptions("static_rpy", 2, 64, 48);
   options.actors = 2;
   EXPECT_NE(message(options).find("--actors 2"), std::string::npos);
-  options = SmallOptions("walking_xyz", 2, 64, 48);
+  options = SmallSequenceOptions("walking_xyz", 2, 64, 48);
   options.actor_class = "wizard";
   EXPECT_NE(message(options).find("--actor-class"), std::string::npos);
-  options = SmallOptions("walking_xyz", 2, 64, 48);
+  options = SmallSequenceOptions("walking_xyz", 2, 64, 48);
   options.textures = folder.Path();
   EXPECT_NE(message(options).find("no images"), std::string::npos);
-  options = SmallOptions("walking_xyz", 2, 64, 48);
+  options = SmallSequenceOptions("walking_xyz", 2, 64, 48);
   options.trajectory = folder / "missing.txt";
   EXPECT_NE(message(options).find("missing.txt"), std::string::npos);
-  options = SmallOptions("walking_xyz", 2, 64, 48);
+  options = SmallSequenceOptions("walking_xyz", 2, 64, 48);
   options.billboard_count = 1;
   EXPECT_NE(message(options).find("--billboards"), std::string::npos);
-  options = SmallOptions("walking_xyz", 2, 64, 48);
+  options = SmallSequenceOptions("walking_xyz", 2, 64, 48);
   options.seed = 3000000000u;
   EXPECT_NE(message(options).find("--seed"), std::string::npos);
-  options = SmallOptions("walking_xyz", 2, 64, 48);
+  options = SmallSequenceOptions("walking_xyz", 2, 64, 48);
   options.actor_class = "cell_phone";
   EXPECT_EQ(message(options), "no error");
 }

@@ -12,7 +12,7 @@
 namespace drvslam::synth {
 namespace {
 
-constexpr double kTwoPi = 2.0 * M_PI;
+constexpr double kFullTurn = 2.0 * M_PI;
 constexpr double kDegree = M_PI / 180.0;
 // Hand shake: a few mm and a few tenths of a degree, 0.7 to 3 Hz.
 constexpr double kShakeTranslation = 0.002;
@@ -82,11 +82,11 @@ CameraPath CameraPath::Procedural(PathKind kind, const ViewAnchor& anchor, uint6
   path.anchor_ = anchor;
   path.anchor_pose_ = anchor.Pose();
   Random rng(SubSeed(seed, RandomStream::kCameraPath));
-  for (double& phase : path.phase_) phase = rng.Uniform(0.0, kTwoPi);
+  for (double& phase : path.phase_) phase = rng.Uniform(0.0, kFullTurn);
   for (int axis = 0; axis < 6; ++axis) {
     for (int k = 0; k < 3; ++k) {
       path.shake_frequency_[axis][k] = rng.Uniform(0.7, 3.0);
-      path.shake_phase_[axis][k] = rng.Uniform(0.0, kTwoPi);
+      path.shake_phase_[axis][k] = rng.Uniform(0.0, kFullTurn);
     }
   }
   return path;
@@ -183,7 +183,7 @@ SE3 CameraPath::PoseAt(double t) const {
   for (int axis = 0; axis < 6; ++axis) {
     double sum = 0.0;
     for (int k = 0; k < 3; ++k) {
-      sum += std::sin(kTwoPi * shake_frequency_[axis][k] * t + shake_phase_[axis][k]);
+      sum += std::sin(kFullTurn * shake_frequency_[axis][k] * t + shake_phase_[axis][k]);
     }
     shake[axis] = sum / 3.0 * (axis < 3 ? kShakeTranslation : kShakeRotation);
   }
@@ -192,29 +192,29 @@ SE3 CameraPath::PoseAt(double t) const {
   const double* phase = phase_;
   switch (kind_) {
     case PathKind::kXyz: {
-      const Eigen::Vector3d move(0.30 * std::sin(kTwoPi * t / 7.0 + phase[0]),
-                                 0.20 * std::sin(kTwoPi * t / 9.3 + phase[1]),
-                                 0.25 * std::sin(kTwoPi * t / 11.7 + phase[2]));
+      const Eigen::Vector3d move(0.30 * std::sin(kFullTurn * t / 7.0 + phase[0]),
+                                 0.20 * std::sin(kFullTurn * t / 9.3 + phase[1]),
+                                 0.25 * std::sin(kFullTurn * t / 11.7 + phase[2]));
       const Eigen::Matrix3d wobble =
-          SmallRotation(1.5 * kDegree * std::sin(kTwoPi * t / 5.1 + phase[3]),
-                        1.5 * kDegree * std::sin(kTwoPi * t / 6.7 + phase[4]),
-                        1.0 * kDegree * std::sin(kTwoPi * t / 8.3 + phase[5]));
+          SmallRotation(1.5 * kDegree * std::sin(kFullTurn * t / 5.1 + phase[3]),
+                        1.5 * kDegree * std::sin(kFullTurn * t / 6.7 + phase[4]),
+                        1.0 * kDegree * std::sin(kFullTurn * t / 8.3 + phase[5]));
       return anchor_pose_ * SE3(wobble, move) * hand;
     }
     case PathKind::kRpy: {
       const Eigen::Matrix3d turn =
-          SmallRotation(15.0 * kDegree * std::sin(kTwoPi * t / 6.3 + phase[1]),
-                        25.0 * kDegree * std::sin(kTwoPi * t / 8.0 + phase[0]),
-                        15.0 * kDegree * std::sin(kTwoPi * t / 5.1 + phase[2]));
-      const Eigen::Vector3d sway(0.01 * std::sin(kTwoPi * t / 4.3 + phase[3]),
-                                 0.01 * std::sin(kTwoPi * t / 5.9 + phase[4]),
-                                 0.01 * std::sin(kTwoPi * t / 3.7 + phase[5]));
+          SmallRotation(15.0 * kDegree * std::sin(kFullTurn * t / 6.3 + phase[1]),
+                        25.0 * kDegree * std::sin(kFullTurn * t / 8.0 + phase[0]),
+                        15.0 * kDegree * std::sin(kFullTurn * t / 5.1 + phase[2]));
+      const Eigen::Vector3d sway(0.01 * std::sin(kFullTurn * t / 4.3 + phase[3]),
+                                 0.01 * std::sin(kFullTurn * t / 5.9 + phase[4]),
+                                 0.01 * std::sin(kFullTurn * t / 3.7 + phase[5]));
       return anchor_pose_ * SE3(turn, sway) * hand;
     }
     case PathKind::kHalfsphere: {
       // Polar angle from the backward axis between 5 and 75 degrees, azimuth turning steadily.
-      const double polar = (40.0 + 35.0 * std::sin(kTwoPi * t / 9.7 + phase[0])) * kDegree;
-      const double azimuth = kTwoPi * t / 12.0 + phase[1];
+      const double polar = (40.0 + 35.0 * std::sin(kFullTurn * t / 9.7 + phase[0])) * kDegree;
+      const double azimuth = kFullTurn * t / 12.0 + phase[1];
       const Eigen::Matrix3d R = anchor_pose_.Rotation();
       const Eigen::Vector3d direction =
           std::cos(polar) * -R.col(2) +
@@ -224,7 +224,7 @@ SE3 CameraPath::PoseAt(double t) const {
     case PathKind::kCircuit: {
       // Starts on the side of the standard viewpoint, looking away from the table.
       const Eigen::Vector2d start = (anchor_.position - anchor_.target).head<2>().normalized();
-      const double angle = std::atan2(start.y(), start.x()) + kTwoPi * t / kCircuitPeriod;
+      const double angle = std::atan2(start.y(), start.x()) + kFullTurn * t / kCircuitPeriod;
       const Eigen::Vector3d outwards(std::cos(angle), std::sin(angle), 0.0);
       const Eigen::Vector3d eye(anchor_.target.x() + kCircuitRadius * outwards.x(),
                                 anchor_.target.y() + kCircuitRadius * outwards.y(), 1.3);

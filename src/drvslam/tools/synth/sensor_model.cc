@@ -11,16 +11,16 @@
 namespace drvslam::synth {
 namespace {
 
-constexpr int kBands = 16;
+constexpr int kNoiseBands = 16;
 
-void Require(bool ok, const char* name, double value, const char* rule) {
+void RequireSensorSetting(bool ok, const char* name, double value, const char* rule) {
   if (ok) return;
   std::ostringstream message;
   message << "sensor." << name << " = " << value << " " << rule;
   throw Error(message.str());
 }
 
-bool InRange(double value, double lo, double hi) {
+bool FiniteWithin(double value, double lo, double hi) {
   return std::isfinite(value) && value >= lo && value <= hi;
 }
 
@@ -57,26 +57,28 @@ SensorOptions SensorOptions::Clean() {
 }
 
 void SensorOptions::Check() const {
-  Require(InRange(depth_noise_coeff, 0.0, 0.1), "depth_noise_coeff", depth_noise_coeff,
-          "must be in [0, 0.1]");
-  Require(InRange(depth_factor, 1.0, 1e6), "depth_factor", depth_factor, "must be in [1, 1e6]");
-  Require(InRange(edge_jump_ratio, 1e-4, 1.0), "edge_jump_ratio", edge_jump_ratio,
-          "must be in [0.0001, 1]");
-  Require(InRange(edge_hole_probability, 0.0, 1.0), "edge_hole_probability", edge_hole_probability,
-          "must be in [0, 1]");
-  Require(InRange(grazing_angle_deg, 1.0, 90.0), "grazing_angle_deg", grazing_angle_deg,
-          "must be in [1, 90]");
-  Require(InRange(min_range, 0.0, 100.0), "min_range", min_range, "must be in [0, 100]");
-  Require(InRange(max_range, 0.0, 100.0) && max_range > min_range, "max_range", max_range,
-          "must be in (min_range, 100]");
-  Require(InRange(color_noise_sigma, 0.0, 50.0), "color_noise_sigma", color_noise_sigma,
-          "must be in [0, 50]");
-  Require(InRange(exposure_amplitude, 0.0, 0.5), "exposure_amplitude", exposure_amplitude,
-          "must be in [0, 0.5]");
-  Require(InRange(exposure_time, 1e-4, 0.2), "exposure_time", exposure_time,
-          "must be in [0.0001, 0.2]");
-  Require(blur_samples >= 2 && blur_samples <= 64, "blur_samples", blur_samples,
-          "must be in 2..64");
+  RequireSensorSetting(FiniteWithin(depth_noise_coeff, 0.0, 0.1), "depth_noise_coeff",
+                       depth_noise_coeff, "must be in [0, 0.1]");
+  RequireSensorSetting(FiniteWithin(depth_factor, 1.0, 1e6), "depth_factor", depth_factor,
+                       "must be in [1, 1e6]");
+  RequireSensorSetting(FiniteWithin(edge_jump_ratio, 1e-4, 1.0), "edge_jump_ratio", edge_jump_ratio,
+                       "must be in [0.0001, 1]");
+  RequireSensorSetting(FiniteWithin(edge_hole_probability, 0.0, 1.0), "edge_hole_probability",
+                       edge_hole_probability, "must be in [0, 1]");
+  RequireSensorSetting(FiniteWithin(grazing_angle_deg, 1.0, 90.0), "grazing_angle_deg",
+                       grazing_angle_deg, "must be in [1, 90]");
+  RequireSensorSetting(FiniteWithin(min_range, 0.0, 100.0), "min_range", min_range,
+                       "must be in [0, 100]");
+  RequireSensorSetting(FiniteWithin(max_range, 0.0, 100.0) && max_range > min_range, "max_range",
+                       max_range, "must be in (min_range, 100]");
+  RequireSensorSetting(FiniteWithin(color_noise_sigma, 0.0, 50.0), "color_noise_sigma",
+                       color_noise_sigma, "must be in [0, 50]");
+  RequireSensorSetting(FiniteWithin(exposure_amplitude, 0.0, 0.5), "exposure_amplitude",
+                       exposure_amplitude, "must be in [0, 0.5]");
+  RequireSensorSetting(FiniteWithin(exposure_time, 1e-4, 0.2), "exposure_time", exposure_time,
+                       "must be in [0.0001, 0.2]");
+  RequireSensorSetting(blur_samples >= 2 && blur_samples <= 64, "blur_samples", blur_samples,
+                       "must be in 2..64");
 }
 
 SensorModel::SensorModel(const SensorOptions& options, const CameraOptions& camera, uint32_t seed)
@@ -108,10 +110,10 @@ void SensorModel::Apply(int frame, double t, const SE3& T_start_now, RenderBuffe
   const Eigen::Matrix3d blur_R = T_start_now.Rotation();
   const Eigen::Vector3d blur_t = T_start_now.Translation();
   const SensorOptions& o = options_;
-  const int rows_per_band = (height + kBands - 1) / kBands;
+  const int rows_per_band = (height + kNoiseBands - 1) / kNoiseBands;
 
   cv::parallel_for_(
-      cv::Range(0, kBands),
+      cv::Range(0, kNoiseBands),
       [&](const cv::Range& range) {
         for (int band = range.start; band < range.end; ++band) {
           const int row0 = band * rows_per_band;
@@ -188,7 +190,7 @@ void SensorModel::Apply(int frame, double t, const SE3& T_start_now, RenderBuffe
           }
         }
       },
-      kBands);
+      kNoiseBands);
   buffers->bgr = bgr;
   buffers->depth = depth;
 }
