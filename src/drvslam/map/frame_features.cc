@@ -134,14 +134,29 @@ std::vector<cv::KeyPoint> FrameFeatures::KeypointsForMapFile() const {
   return keypoints;
 }
 
+namespace {
+
+// The grid cell of a coordinate already scaled to cells, truncated as a cast would be, but
+// saturated to -1 or `cells` (NaN gives -1): a point projected or undistorted far outside the
+// image would otherwise overflow the int conversion, which is undefined behaviour.
+int GridCell(double scaled, int cells) {
+  if (!(scaled > -1.0)) return -1;
+  if (scaled >= cells) return cells;
+  return static_cast<int>(scaled);
+}
+
+}  // namespace
+
 void FrameFeatures::BuildGrid() {
   const std::size_t n = keypoints_.size();
   cell_width_inv_ = kGridCols / (geometry_->max_x - geometry_->min_x);
   cell_height_inv_ = kGridRows / (geometry_->max_y - geometry_->min_y);
   grid_.assign(kGridCols * kGridRows, {});
   for (std::size_t i = 0; i < n; ++i) {
-    const int cx = static_cast<int>((keypoints_un_[i].pt.x - geometry_->min_x) * cell_width_inv_);
-    const int cy = static_cast<int>((keypoints_un_[i].pt.y - geometry_->min_y) * cell_height_inv_);
+    const int cx =
+        GridCell((keypoints_un_[i].pt.x - geometry_->min_x) * cell_width_inv_, kGridCols);
+    const int cy =
+        GridCell((keypoints_un_[i].pt.y - geometry_->min_y) * cell_height_inv_, kGridRows);
     if (cx < 0 || cy < 0 || cx >= kGridCols || cy >= kGridRows) continue;
     grid_[cy * kGridCols + cx].push_back(i);
   }
@@ -150,12 +165,13 @@ void FrameFeatures::BuildGrid() {
 std::vector<std::size_t> FrameFeatures::FeaturesInArea(double x, double y, double r, int min_level,
                                                        int max_level) const {
   std::vector<std::size_t> result;
-  const int min_cx = std::max(0, static_cast<int>((x - r - geometry_->min_x) * cell_width_inv_));
+  const int min_cx = std::max(0, GridCell((x - r - geometry_->min_x) * cell_width_inv_, kGridCols));
   const int max_cx =
-      std::min(kGridCols - 1, static_cast<int>((x + r - geometry_->min_x) * cell_width_inv_));
-  const int min_cy = std::max(0, static_cast<int>((y - r - geometry_->min_y) * cell_height_inv_));
+      std::min(kGridCols - 1, GridCell((x + r - geometry_->min_x) * cell_width_inv_, kGridCols));
+  const int min_cy =
+      std::max(0, GridCell((y - r - geometry_->min_y) * cell_height_inv_, kGridRows));
   const int max_cy =
-      std::min(kGridRows - 1, static_cast<int>((y + r - geometry_->min_y) * cell_height_inv_));
+      std::min(kGridRows - 1, GridCell((y + r - geometry_->min_y) * cell_height_inv_, kGridRows));
   if (min_cx > max_cx || min_cy > max_cy || x + r < geometry_->min_x || y + r < geometry_->min_y) {
     return result;
   }
