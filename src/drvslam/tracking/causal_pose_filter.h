@@ -4,8 +4,9 @@
 // shift that looks like a turn, docs/architecture.md "The saved trajectory"); a camera is a rigid
 // body whose velocity changes smoothly, so the filter is an error-state Kalman filter on SE(3)
 // with the saved trajectory smoother's constant-velocity model (white acceleration), run
-// forward only. State: camera centre (world), orientation, linear velocity (world) and angular
-// velocity (camera frame); its covariance gives the pose's and the velocity's.
+// forward only, its acceleration measured from the tracked poses (camera_acceleration.h) up to
+// the configured one. State: camera centre (world), orientation, linear velocity (world) and
+// angular velocity (camera frame); its covariance gives the pose's and the velocity's.
 //
 // The measurement covariance is the pose solve's (optim/pose_optimizer.h: PoseInformation)
 // scaled by an inflation: the solve treats the map points as exact and the pixel noise as one
@@ -25,8 +26,10 @@
 
 #include <Eigen/Core>
 #include <deque>
+#include <utility>
 
 #include "drvslam/core/se3.h"
+#include "drvslam/tracking/camera_acceleration.h"
 
 namespace drvslam {
 
@@ -34,7 +37,8 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 struct CausalPoseOptions {
   // Standard deviation of the camera's acceleration, as one frame interval sees it (the saved
-  // trajectory smoother's Tracking.smoothingAcceleration, smoothingAngularAcceleration).
+  // trajectory smoother's Tracking.smoothingAcceleration, smoothingAngularAcceleration): the
+  // most the filter assumes; what it uses is measured from the poses, up to this.
   double acceleration = 1.0;             // m/s²
   double angular_acceleration = 2.0;     // rad/s²
   double frame_interval_s = 1.0 / 30.0;  // 1 / Camera.fps
@@ -64,7 +68,7 @@ class CausalPoseFilter {
   // information, the estimate is then the prediction, or the pose itself on a first frame).
   // Starts afresh at the first frame, after Forget, and after a gap of more than half a second
   // (frames skipped while tracking was busy are bridged by the prediction).
-  CausalPose Update(double timestamp, const SE3& measured_T_wc, const Matrix6d& covariance);
+  CausalPose Update(double timestamp, const SE3& measured_T_wc, const Matrix6d& solve_covariance);
   // Tracking was lost (or the pose was found again by relocalization): no motion is known
   // across it; the next Update starts afresh.
   void Forget();
@@ -75,6 +79,8 @@ class CausalPoseFilter {
 
   // The inflation of the solve's covariance now in use (>= 1).
   double Inflation() const { return inflation_; }
+  // The camera's acceleration the motion prior now assumes.
+  const CameraAccelerationEstimator& Acceleration() const { return acceleration_; }
 
   // The map's share of a pose's error, in units of the frame's own (inflated) solve covariance.
   static constexpr double kMapShare = 2.0;
@@ -84,11 +90,17 @@ class CausalPoseFilter {
   void Start(double timestamp, const SE3& T_wc, const Matrix6d& covariance);
   void Predict(double dt);
   void Correct(const SE3& measured_T_wc, const Matrix6d& covariance);
+  // The solve's covariance, scaled up to the median size (trace) of the last few seconds' when
+  // smaller: a frame's pose is not many times better than its neighbours' (their error is mostly
+  // the map's, which they share), however many matches the solve had; one overconfident frame
+  // would otherwise pull the estimate to it.
+  Matrix6d Floored(double timestamp, const Matrix6d& covariance);
   // Adds the whitened second difference of the last three tracked poses to the window.
   void MeasureInflation(const SE3& T_wc, const Matrix6d& covariance, double timestamp);
   CausalPose Estimate() const;
 
   CausalPoseOptions options_;
+  CameraAccelerationEstimator acceleration_;
   bool started_ = false;
   bool rebase_ = false;
   double timestamp_ = 0.0;
@@ -107,6 +119,7 @@ class CausalPoseFilter {
     Matrix6d covariance;
   };
   std::deque<Measured> recent_;
+  std::deque<std::pair<double, double>> recent_traces_;  // (timestamp, trace), for Floored
   struct SecondDifference {
     Eigen::Matrix<double, 6, 1> difference;
     Matrix6d spread;  // what the measurement noise gives it, at inflation 1

@@ -41,11 +41,13 @@ const OptionTable<TrackerOptions>& TrackerOptionTable() {
               "the poses as tracked (0). The per-frame poses TrackRGBD returns are the causal "
               "filter's either way.")
         .Real("smoothingAcceleration", &T::smoothing_acceleration, Bounds::Above(0.0),
-              "Motion prior of the saved trajectory's smoother and of the causal per-frame pose: "
+              "Motion prior of the saved trajectory's smoother, and the most the causal "
+              "per-frame pose assumes (it measures the camera's own from the tracked poses): "
               "standard deviation of the camera's acceleration over one frame interval, m/s².")
         .Real("smoothingAngularAcceleration", &T::smoothing_angular_acceleration,
               Bounds::Above(0.0),
-              "Motion prior of the saved trajectory's smoother and of the causal per-frame pose: "
+              "Motion prior of the saved trajectory's smoother, and the most the causal "
+              "per-frame pose assumes (it measures the camera's own from the tracked poses): "
               "standard deviation of the camera's angular acceleration over one frame "
               "interval, rad/s².");
     return t;
