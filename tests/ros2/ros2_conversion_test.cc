@@ -107,6 +107,14 @@ TEST(ImageMessagesTest, BadImagesAreErrorsNamingTheTopicAndTheProblem) {
   EXPECT_ERROR_SAYS(DepthImageMetres(ImageOf(bytes, "rgb8", 2, 2, 6), "/depth"),
                     "not a depth encoding");
   EXPECT_ERROR_SAYS(ColourImage(ImageOf(bytes, "rgb8", 0, 2, 6), "/cam"), "empty");
+  // Sizes beyond cv::Mat's int are named before any row arithmetic (steps of 0 and 2^32 - 1).
+  EXPECT_ERROR_SAYS(ColourImage(ImageOf(bytes, "rgb8", 1, 0x80000000u, 0), "/cam"),
+                    "/cam: 1 x 2147483648 pixels is larger than 32768 on a side");
+  EXPECT_ERROR_SAYS(DepthImageMetres(ImageOf(bytes, "16UC1", 40000, 1, 0xffffffffu), "/depth"),
+                    "40000 x 1 pixels is larger than 32768");
+  // The largest side still passes the size check and stops at the data length.
+  EXPECT_ERROR_SAYS(ColourImage(ImageOf(bytes, "mono8", 32768, 1, 32768), "/cam"),
+                    "data holds 12 bytes");
 }
 
 TEST(ImageMessagesTest, DepthIsMetresFromMillimetresOrFloatsWithInvalidAsZero) {
@@ -169,6 +177,10 @@ TEST(CameraInfoTest, WhatTheModelCannotHoldIsAnError) {
   info.k[0] = 0.0;
   EXPECT_ERROR_SAYS(CameraFromInfo(info, CameraOptions(), "/info"),
                     "camera info on /info: K has no positive focal lengths");
+  sensor_msgs_msg_dds__CameraInfo_ huge = InfoOf(none, "");
+  huge.height = 0xffffffffu;
+  EXPECT_ERROR_SAYS(CameraFromInfo(huge, CameraOptions(), "/info"),
+                    "camera info on /info: 848 x 4294967295 pixels is larger than 32768");
 }
 
 TEST(RosDomainIdTest, ReadsTheVariableAsRos2Does) {

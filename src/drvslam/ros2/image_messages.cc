@@ -10,6 +10,14 @@ namespace drvslam::ros2 {
 namespace {
 
 constexpr std::int64_t kNanosecondsPerSecond = 1000000000;
+// No camera has sides this long, and larger ones would not fit cv::Mat's int sizes (the
+// message's are uint32): a larger size is a malformed or hostile message.
+constexpr std::uint32_t kMaxImageSide = 1u << 15;
+
+std::string SideError(std::uint32_t width, std::uint32_t height) {
+  return std::to_string(width) + " x " + std::to_string(height) + " pixels is larger than " +
+         std::to_string(kMaxImageSide) + " on a side";
+}
 
 [[noreturn]] void Reject(const std::string& topic, const std::string& problem) {
   throw Error("image on " + topic + ": " + problem);
@@ -19,6 +27,9 @@ constexpr std::int64_t kNanosecondsPerSecond = 1000000000;
 // size, the row step and the data length.
 cv::Mat BorrowPixels(const sensor_msgs_msg_dds__Image_& image, int type, const std::string& topic) {
   if (image.width == 0 || image.height == 0) Reject(topic, "empty (width or height 0)");
+  if (image.width > kMaxImageSide || image.height > kMaxImageSide) {
+    Reject(topic, SideError(image.width, image.height));
+  }
   const std::size_t row_bytes = static_cast<std::size_t>(image.width) * CV_ELEM_SIZE(type);
   if (image.step < row_bytes) {
     Reject(topic, "step " + std::to_string(image.step) + " is shorter than a row (" +
@@ -128,6 +139,9 @@ CameraOptions CameraFromInfo(const sensor_msgs_msg_dds__CameraInfo_& info,
            std::to_string(info.k[4]) + ")");
   }
   if (info.width == 0 || info.height == 0) reject("width or height is 0");
+  if (info.width > kMaxImageSide || info.height > kMaxImageSide) {
+    reject(SideError(info.width, info.height));
+  }
   CameraOptions camera = base;
   camera.fx = info.k[0];
   camera.fy = info.k[4];
