@@ -109,7 +109,15 @@ for name in "${targets[@]}"; do
   ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<< "$done_line")
   printf '%-14s %8s %10s %8s %8s  %s\n' "$name" "$status" "${executions:--}" "${cov:--}" "${ft:--}" \
     "${dir#"$root/"}/log.txt"
-  findings=$(find "$dir/artifacts" -type f | sort)
+  # libFuzzer also writes inputs that took over 10 s (slow-unit-*). That is wall time, which a
+  # loaded machine stretches: a note, not a finding; -timeout=30 makes a hang a finding.
+  findings=$(find "$dir/artifacts" -type f ! -name 'slow-unit-*' | sort)
+  slow=$(find "$dir/artifacts" -type f -name 'slow-unit-*' | sort)
+  if [ -n "$slow" ]; then
+    echo "  $name: $(wc -l <<< "$slow") inputs took over 10 s of wall time (not a finding;" \
+         "replay one alone to see its time):" >&2
+    for input in $slow; do echo "    ${input#"$root/"}" >&2; done
+  fi
   if [ "$status" != 0 ] || [ -n "$findings" ]; then
     failed=1
     echo "  $name found a problem (exit status $status):" >&2
